@@ -1,0 +1,34 @@
+//! Linear algebra over constraint rows.
+//!
+//! A constraint set is a matrix `C` whose rows are the linear parts of affine forms over the
+//! model's slots; the constrained space is its null space. This module turns rows into
+//! matrices and answers rank questions with a tolerance scaled to the rows' magnitude.
+
+use crate::ir::Affine;
+use nalgebra::DMatrix;
+
+/// The rows' linear parts as a dense `rows × slots` matrix.
+pub fn matrix(rows: &[&Affine], slots: usize) -> DMatrix<f64> {
+    let mut m = DMatrix::zeros(rows.len(), slots);
+    for (i, r) in rows.iter().enumerate() {
+        for &(s, a) in &r.terms {
+            m[(i, s as usize)] = a;
+        }
+    }
+    m
+}
+
+/// The rank of the rows (0 for no rows).
+pub fn rank(rows: &[&Affine], slots: usize) -> usize {
+    if rows.is_empty() || slots == 0 {
+        return 0;
+    }
+    let m = matrix(rows, slots);
+    let scale = m.iter().fold(0.0f64, |acc, v| acc.max(v.abs())).max(1.0);
+    m.rank(1e-9 * scale * (rows.len().max(slots) as f64))
+}
+
+/// The dimension of the space the rows leave free.
+pub fn nullity(rows: &[&Affine], slots: usize) -> usize {
+    slots - rank(rows, slots)
+}

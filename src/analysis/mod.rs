@@ -1,0 +1,11 @@
+//! The analysis: which geometric relations hold on a model.
+//!
+//! `candidates` finds every relation of the paper's four kinds that holds on the input;
+//! `linalg` answers rank questions over constraint rows; `tolerance` is the single place
+//! floats are compared.
+
+pub mod candidates;
+pub mod linalg;
+pub mod tolerance;
+
+pub use candidates::{Candidate, Candidates, RelationKind, find_candidates};

@@ -1,0 +1,33 @@
+//! The one place floats are compared.
+//!
+//! Every "does this relation hold" question is answered against a tolerance relative to the
+//! model's size (the longest side of its bounding box), so the answer is the same at any
+//! scale. `algorithms.md` §1: ε = 1e-6 × size.
+
+/// Relative tolerance for relations holding on the input.
+pub const RELATIVE_EPSILON: f64 = 1e-6;
+
+/// An absolute tolerance derived from a model's size.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct Tolerance {
+    pub epsilon: f64,
+}
+
+impl Tolerance {
+    /// ε for a model whose bounding box's longest side is `size` (a model of size 0 still
+    /// gets a positive tolerance, so exact equality is always enough).
+    pub fn for_size(size: f64) -> Self {
+        let size = if size.is_finite() && size > 0.0 {
+            size
+        } else {
+            1.0
+        };
+        Tolerance {
+            epsilon: RELATIVE_EPSILON * size,
+        }
+    }
+
+    pub fn equal(&self, a: f64, b: f64) -> bool {
+        (a - b).abs() <= self.epsilon
+    }
+}

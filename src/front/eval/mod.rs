@@ -1,0 +1,511 @@
+//! Evaluation: a parsed program in, an IR [`Model`] out.
+//!
+//! The program is run as OpenSCAD runs it; every number literal is a candidate slot. A run
+//! records which literals must be frozen — those deciding structure (conditions, loop
+//! bounds, rotation angles, `$fn`) and those multiplying another slot-dependent factor in a
+//! feature a relation needs — and the program is run again with them as constants until
+//! nothing new is frozen. Then the literals that reach geometry become the model's slots.
+
+mod builtins;
+mod expr;
+mod modules;
+mod scope;
+mod stmt;
+mod value;
+
+pub use self::value::format_number;
+
+use self::scope::{Defs, FunctionDefn, ModuleDefn, Scope};
+use self::stmt::Children;
+use self::value::Value;
+use super::ast::{ExprKind, StmtKind};
+use super::diag::{DResult, Diagnostic};
+use super::load::Loaded;
+use super::naming::Naming;
+use super::source::{FileId, SourceMap, Span};
+use super::walk::{Visitor, visit_stmts};
+use crate::ir::part::Misalignment;
+use crate::ir::{CsgNode, FreezeReason, FrozenLiteral, Model, Num, Part, Slot, SlotId, Transform};
+use std::collections::{BTreeMap, HashMap};
+use std::rc::Rc;
+
+/// How deep module and function calls may nest before we call it endless recursion.
+pub const MAX_CALL_DEPTH: usize = 1000;
+
+/// How many freeze-and-rerun rounds evaluation may take.
+const MAX_PASSES: usize = 64;
+
+/// What evaluation produced: the model and any warnings.
+#[derive(Debug)]
+pub struct Evaluated {
+    pub model: Model,
+    pub warnings: Vec<Diagnostic>,
+}
+
+/// The geometric context of a statement: where it is, what names it, what `children()` is.
+#[derive(Clone)]
+pub struct Ctx<'a> {
+    pub transform: Rc<Transform>,
+    pub misaligned: Option<Misalignment>,
+    pub highlight: bool,
+    pub background: bool,
+    /// The innermost comment naming a statement around here.
+    pub name: Option<String>,
+    /// The innermost user module being instantiated.
+    pub module: Option<String>,
+    pub children: Option<Rc<Children<'a>>>,
+}
+
+impl Ctx<'_> {
+    fn root() -> Self {
+        Ctx {
+            transform: Rc::new(Transform::identity()),
+            misaligned: None,
+            highlight: false,
+            background: false,
+            name: None,
+            module: None,
+            children: None,
+        }
+    }
+
+    /// The name a part made here gets (empty: named by position later).
+    pub fn part_name(&self) -> String {
+        self.name
+            .clone()
+            .or_else(|| self.module.clone())
+            .unwrap_or_default()
+    }
+}
+
+/// Every literal seen, across passes: its id, and which are frozen.
+#[derive(Default)]
+pub struct Literals {
+    by_span: HashMap<Span, SlotId>,
+    spans: Vec<Span>,
+    values: Vec<f64>,
+    named: Vec<bool>,
+    frozen: BTreeMap<SlotId, FreezeReason>,
+}
+
+impl Literals {
+    pub fn is_named(&self, id: SlotId) -> bool {
+        self.named.get(id as usize).copied().unwrap_or(false)
+    }
+}
+
+/// The state of one evaluation pass.
+pub struct Eval<'a> {
+    loaded: &'a Loaded,
+    defs: &'a Defs,
+    naming: &'a Naming,
+    lits: &'a mut Literals,
+    new_freezes: Vec<(SlotId, FreezeReason)>,
+    parts: Vec<Part>,
+    background: Vec<Part>,
+    root: Option<CsgNode>,
+    depth: usize,
+    used_scopes: HashMap<FileId, Rc<Scope>>,
+    /// Per slot: the name of what it belongs to (if known yet) and its role.
+    slot_roles: HashMap<SlotId, (Option<String>, String)>,
+    warnings: Vec<Diagnostic>,
+}
+
+impl Eval<'_> {
+    /// The number a literal evaluates to: a slot, or a constant once frozen.
+    fn literal(&mut self, span: Span, value: f64) -> Num {
+        let next = self.lits.spans.len() as SlotId;
+        let id = *self.lits.by_span.entry(span).or_insert(next);
+        if id == next {
+            self.lits.spans.push(span);
+            self.lits.values.push(value);
+            self.lits.named.push(self.naming.variable(span).is_some());
+        }
+        if self.lits.frozen.contains_key(&id) {
+            Num::constant(value)
+        } else {
+            Num::slot(id, value)
+        }
+    }
+
+    /// Freezes every slot `n` depends on: its value decides structure.
+    fn freeze_num(&mut self, n: &Num, why: &str) {
+        for s in n.deps() {
+            if !self.lits.frozen.contains_key(&s) {
+                self.new_freezes
+                    .push((s, FreezeReason::Structural(why.to_string())));
+            }
+        }
+    }
+
+    fn freeze_value(&mut self, v: &Value, why: &str) {
+        match v {
+            Value::Num(n) => self.freeze_num(n, why),
+            Value::Vector(items) => items.iter().for_each(|x| self.freeze_value(x, why)),
+            Value::Range(r) => {
+                for n in [&r.start, &r.step, &r.end] {
+                    self.freeze_num(n, why);
+                }
+            }
+            _ => {}
+        }
+    }
+
+    /// Records what the slots of `n` set, for naming them (first use wins).
+    fn name_slots(&mut self, n: &Num, role: &str, owner: Option<String>) {
+        if let Some(a) = n.affine() {
+            for s in a.slots() {
+                let span = self.lits.spans[s as usize];
+                let context = self
+                    .naming
+                    .literal_context(span)
+                    .map(str::to_string)
+                    .or_else(|| owner.clone().filter(|o| !o.is_empty()));
+                self.slot_roles
+                    .entry(s)
+                    .or_insert((context, role.to_string()));
+            }
+        }
+    }
+}
+
+/// The closest name within a small edit distance, for "did you mean" notes.
+pub fn suggest(name: &str, candidates: &[String]) -> Option<String> {
+    let limit = (name.chars().count() / 3).max(1);
+    candidates
+        .iter()
+        .filter(|c| c.as_str() != name)
+        .map(|c| (edit_distance(name, c), c))
+        .filter(|(d, _)| *d <= limit)
+        .min_by_key(|(d, c)| (*d, (*c).clone()))
+        .map(|(_, c)| c.clone())
+}
+
+fn edit_distance(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut prev: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.chars().enumerate() {
+        let mut cur = vec![i + 1; b.len() + 1];
+        for (j, &cb) in b.iter().enumerate() {
+            cur[j + 1] = (prev[j] + usize::from(ca != cb))
+                .min(prev[j + 1] + 1)
+                .min(cur[j] + 1);
+        }
+        prev = cur;
+    }
+    prev[b.len()]
+}
+
+/// Indexes every module, function and function literal of every file, once.
+fn build_defs(loaded: &Loaded) -> Defs {
+    struct Indexer(Defs);
+    impl<'a> Visitor<'a> for Indexer {
+        fn enter(&mut self, s: &'a super::ast::Stmt) {
+            match &s.kind {
+                StmtKind::ModuleDef { name, params, body } => {
+                    self.0.modules.insert(
+                        s.span,
+                        Rc::new(ModuleDefn {
+                            span: s.span,
+                            name: name.name.clone(),
+                            name_span: name.span,
+                            params: params.clone(),
+                            body: body.clone(),
+                        }),
+                    );
+                }
+                StmtKind::FunctionDef { name, params, body } => {
+                    self.0.functions.insert(
+                        s.span,
+                        Rc::new(FunctionDefn {
+                            name: name.name.clone(),
+                            params: params.clone(),
+                            body: body.clone(),
+                        }),
+                    );
+                }
+                _ => {}
+            }
+        }
+        fn expr(&mut self, e: &'a super::ast::Expr) {
+            if let ExprKind::FunctionLiteral { params, body } = &e.kind {
+                self.0.functions.insert(
+                    e.span,
+                    Rc::new(FunctionDefn {
+                        name: "function literal".into(),
+                        params: params.clone(),
+                        body: (**body).clone(),
+                    }),
+                );
+            }
+        }
+    }
+    let mut ix = Indexer(Defs::default());
+    for program in loaded.programs.values() {
+        visit_stmts(&program.stmts, &mut ix);
+    }
+    ix.0
+}
+
+/// Runs the program to a fixed point of frozen literals and builds the model.
+pub fn evaluate(sources: &SourceMap, loaded: &Loaded) -> DResult<Evaluated> {
+    let defs = build_defs(loaded);
+    let naming = Naming::new(sources, &loaded.programs, loaded.main);
+    let mut lits = Literals::default();
+    let mut pass = 0;
+    loop {
+        pass += 1;
+        let mut ev = Eval {
+            loaded,
+            defs: &defs,
+            naming: &naming,
+            lits: &mut lits,
+            new_freezes: Vec::new(),
+            parts: Vec::new(),
+            background: Vec::new(),
+            root: None,
+            depth: 0,
+            used_scopes: HashMap::new(),
+            slot_roles: HashMap::new(),
+            warnings: Vec::new(),
+        };
+        let program = &loaded.programs[&loaded.main];
+        let nodes = ev.block(&program.stmts, &Scope::root(), &Ctx::root())?;
+        if let Some(root) = ev.root.take() {
+            // `!`: only that subtree is the model.
+            let (parts, csg) = keep_only(std::mem::take(&mut ev.parts), &root);
+            ev.parts = parts;
+            ev.root = Some(csg);
+        }
+        let csg = ev.root.take().unwrap_or(CsgNode::Union(nodes));
+        ev.freeze_products();
+        let Eval {
+            new_freezes,
+            parts,
+            background,
+            slot_roles,
+            warnings,
+            ..
+        } = ev;
+        if new_freezes.is_empty() || pass >= MAX_PASSES {
+            let model = build_model(sources, &lits, parts, background, csg, slot_roles);
+            return Ok(Evaluated { model, warnings });
+        }
+        for (s, why) in new_freezes {
+            lits.frozen.entry(s).or_insert(why);
+        }
+    }
+}
+
+impl Eval<'_> {
+    /// Asks to freeze the inner factor of every product inside a relation's feature.
+    fn freeze_products(&mut self) {
+        let mut asks = Vec::new();
+        for (i, part) in self.parts.iter().enumerate() {
+            if part.misaligned.is_some() {
+                continue;
+            }
+            for f in crate::ir::feature::part_features(part, i).unwrap_or_default() {
+                for n in &f.nums {
+                    asks.extend(n.freeze_to_make_affine().iter().copied());
+                }
+            }
+        }
+        asks.sort_unstable();
+        asks.dedup();
+        for s in asks {
+            if !self.lits.frozen.contains_key(&s) {
+                let why = "it multiplies another parameter (a size under a `scale`, or a product in an expression)";
+                self.new_freezes
+                    .push((s, FreezeReason::Product(why.into())));
+            }
+        }
+    }
+}
+
+/// The parts below `root`, renumbered in order, and `root` with the new numbers.
+fn keep_only(parts: Vec<Part>, root: &CsgNode) -> (Vec<Part>, CsgNode) {
+    let kept = root.parts();
+    let new_index: HashMap<usize, usize> = kept.iter().enumerate().map(|(n, &o)| (o, n)).collect();
+    fn renumber(node: &CsgNode, map: &HashMap<usize, usize>) -> CsgNode {
+        match node {
+            CsgNode::Part(i) => CsgNode::Part(map[i]),
+            CsgNode::Union(c) => CsgNode::Union(c.iter().map(|n| renumber(n, map)).collect()),
+            CsgNode::Difference(c) => {
+                CsgNode::Difference(c.iter().map(|n| renumber(n, map)).collect())
+            }
+            CsgNode::Intersection(c) => {
+                CsgNode::Intersection(c.iter().map(|n| renumber(n, map)).collect())
+            }
+        }
+    }
+    let csg = renumber(root, &new_index);
+    let mut parts: Vec<Option<Part>> = parts.into_iter().map(Some).collect();
+    let kept_parts = kept
+        .iter()
+        .filter_map(|&i| parts.get_mut(i).and_then(Option::take))
+        .collect();
+    (kept_parts, csg)
+}
+
+fn part_nums(p: &Part) -> Vec<&Num> {
+    let mut v: Vec<&Num> = p.world.m.iter().flatten().collect();
+    match &p.primitive {
+        crate::ir::Primitive::Cube { size, .. } => v.extend(size.iter()),
+        crate::ir::Primitive::Cylinder { h, r1, r2, .. } => v.extend([h, r1, r2]),
+        crate::ir::Primitive::Sphere { r } => v.push(r),
+    }
+    v
+}
+
+fn remap_part(p: &Part, map: &dyn Fn(SlotId) -> Option<SlotId>) -> Part {
+    let mut q = p.clone();
+    for row in q.world.m.iter_mut() {
+        for n in row.iter_mut() {
+            *n = n.remap(map);
+        }
+    }
+    q.primitive = match &p.primitive {
+        crate::ir::Primitive::Cube { size, center } => crate::ir::Primitive::Cube {
+            size: size.each_ref().map(|n| n.remap(map)),
+            center: *center,
+        },
+        crate::ir::Primitive::Cylinder { h, r1, r2, center } => crate::ir::Primitive::Cylinder {
+            h: h.remap(map),
+            r1: r1.remap(map),
+            r2: r2.remap(map),
+            center: *center,
+        },
+        crate::ir::Primitive::Sphere { r } => crate::ir::Primitive::Sphere { r: r.remap(map) },
+    };
+    q
+}
+
+/// Makes names unique by numbering repeats: `leg`, `leg_2`, `leg_3`.
+fn dedupe(names: &mut [String]) {
+    let mut seen: std::collections::HashSet<String> = std::collections::HashSet::new();
+    for n in names.iter_mut() {
+        if seen.insert(n.clone()) {
+            continue;
+        }
+        let mut k = 2;
+        while seen.contains(&format!("{n}_{k}")) {
+            k += 1;
+        }
+        *n = format!("{n}_{k}");
+        seen.insert(n.clone());
+    }
+}
+
+fn build_model(
+    sources: &SourceMap,
+    lits: &Literals,
+    mut parts: Vec<Part>,
+    background: Vec<Part>,
+    csg: CsgNode,
+    roles: HashMap<SlotId, (Option<String>, String)>,
+) -> Model {
+    let mut part_names: Vec<String> = parts
+        .iter()
+        .enumerate()
+        .map(|(i, p)| {
+            if p.name.is_empty() {
+                format!("part{}", i + 1)
+            } else {
+                p.name.clone()
+            }
+        })
+        .collect();
+    dedupe(&mut part_names);
+    for (p, n) in parts.iter_mut().zip(&part_names) {
+        p.name = n.clone();
+    }
+    // Live slots: literals that reach geometry and are not frozen, in source order.
+    let mut first_part: BTreeMap<SlotId, usize> = BTreeMap::new();
+    for (i, p) in parts.iter().enumerate() {
+        for n in part_nums(p) {
+            for s in n.deps() {
+                first_part.entry(s).or_insert(i);
+            }
+        }
+    }
+    let mut live: Vec<SlotId> = first_part
+        .keys()
+        .copied()
+        .filter(|s| !lits.frozen.contains_key(s))
+        .collect();
+    live.sort_by_key(|&s| lits.spans[s as usize]);
+    let dense: HashMap<SlotId, SlotId> = live
+        .iter()
+        .enumerate()
+        .map(|(i, &s)| (s, i as SlotId))
+        .collect();
+    let map = |s: SlotId| dense.get(&s).copied();
+    let mut names: Vec<String> = live
+        .iter()
+        .map(|&s| {
+            let span = lits.spans[s as usize];
+            if let Some(v) = naming_variable(lits, s, sources, span) {
+                return v;
+            }
+            let (owner, role) = roles.get(&s).cloned().unwrap_or((None, "value".into()));
+            let owner = owner.unwrap_or_else(|| part_names[first_part[&s]].clone());
+            format!("{owner}.{role}")
+        })
+        .collect();
+    dedupe(&mut names);
+    let slots = live
+        .iter()
+        .zip(names)
+        .enumerate()
+        .map(|(i, (&s, name))| {
+            let span = lits.spans[s as usize];
+            Slot {
+                id: i as SlotId,
+                variable: lits.is_named(s).then(|| name.clone()),
+                name,
+                value: lits.values[s as usize],
+                span,
+                text: sources.snippet(span).to_string(),
+            }
+        })
+        .collect();
+    let frozen = lits
+        .frozen
+        .iter()
+        .map(|(&s, why)| {
+            let span = lits.spans[s as usize];
+            FrozenLiteral {
+                span,
+                text: sources.snippet(span).to_string(),
+                value: lits.values[s as usize],
+                reason: why.clone(),
+            }
+        })
+        .collect::<Vec<_>>();
+    let mut frozen = frozen;
+    frozen.sort_by_key(|f| f.span);
+    Model {
+        slots,
+        parts: parts.iter().map(|p| remap_part(p, &map)).collect(),
+        csg,
+        frozen,
+        background: background.iter().map(|p| remap_part(p, &map)).collect(),
+    }
+}
+
+/// The variable a literal is the whole value of, read back from the source.
+fn naming_variable(lits: &Literals, s: SlotId, sources: &SourceMap, span: Span) -> Option<String> {
+    if !lits.is_named(s) {
+        return None;
+    }
+    // The assignment is `name = [-]literal`: the name is the identifier before `=`.
+    let text = sources.text(span.file);
+    let before = text.get(..span.start as usize)?;
+    let eq = before.rfind('=')?;
+    let name = before[..eq].trim_end();
+    let start = name
+        .rfind(|c: char| !(c.is_alphanumeric() || c == '_' || c == '$'))
+        .map_or(0, |i| i + 1);
+    Some(name[start..].to_string())
+}

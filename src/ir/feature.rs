@@ -1,0 +1,233 @@
+//! Features: the face planes, axis lines, key points and extents of a part.
+//!
+//! Each feature is a list of numbers (one for a plane or an extent, two for an axis line —
+//! its coordinates on the other two axes in x, y, z order — three for a point) computed from
+//! the part's primitive and world matrix. For an axis-aligned part the numbers are affine in
+//! slots once the evaluator has frozen what it must; a part off the axes has no features.
+//!
+//! Which features a part has is the paper's definition: a box has six face planes, three
+//! axis lines, eight corners and three extents; a cylinder or cone two end planes, one axis
+//! line, two end-cap centres and three extents (its bounding box); a sphere its centre and
+//! three extents.
+
+use super::num::{FreezeSide, Num};
+use super::part::{Part, Primitive};
+use serde::Serialize;
+
+pub const AXIS_NAMES: [&str; 3] = ["x", "y", "z"];
+/// Face names by axis, low side then high side.
+pub const FACE_NAMES: [[&str; 2]; 3] = [["left", "right"], ["front", "back"], ["bottom", "top"]];
+pub const EXTENT_NAMES: [&str; 3] = ["width", "depth", "height"];
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum FeatureKind {
+    /// A face plane normal to `axis`, on its low or high side.
+    Plane { axis: u8, high: bool },
+    /// An axis line along `axis`.
+    AxisLine { axis: u8 },
+    /// A key point; `sides` says low (false) or high (true) on each axis for box corners,
+    /// and the end along the cylinder axis for cap centres.
+    Point { sides: [bool; 3], cap: bool },
+    /// The extent along `axis`.
+    Extent { axis: u8 },
+}
+
+/// One feature of one part, with its numbers.
+#[derive(Debug, Clone)]
+pub struct Feature {
+    pub part: usize,
+    pub kind: FeatureKind,
+    /// The role within the part, e.g. `top`, `height`, `z_axis`, `left_front_bottom`.
+    pub role: String,
+    pub nums: Vec<Num>,
+}
+
+/// The local axis each world axis maps to, and the sign of that entry.
+fn alignment(part: &Part) -> Option<[(usize, f64); 3]> {
+    let perm = part.world.axis_permutation()?;
+    Some(std::array::from_fn(|i| {
+        let j = perm[i];
+        (j, part.world.m[i][j].value.signum())
+    }))
+}
+
+/// `t + w·p` with the inner factor `p` frozen if both depend on slots.
+fn place(t: &Num, w: &Num, p: &Num) -> Num {
+    t.add(&w.mul(p, FreezeSide::Right))
+}
+
+/// Local interval along each local axis, and the local radius used for side extremes.
+struct LocalShape {
+    lo: [Num; 3],
+    hi: [Num; 3],
+}
+
+fn local_shape(prim: &Primitive) -> LocalShape {
+    let half = |n: &Num| n.mul(&Num::constant(0.5), FreezeSide::Right);
+    match prim {
+        Primitive::Cube { size, center } => {
+            if *center {
+                LocalShape {
+                    lo: size.each_ref().map(|s| half(s).neg()),
+                    hi: size.each_ref().map(half),
+                }
+            } else {
+                LocalShape {
+                    lo: std::array::from_fn(|_| Num::constant(0.0)),
+                    hi: size.clone(),
+                }
+            }
+        }
+        Primitive::Cylinder { h, r1, r2, center } => {
+            let r = if r2.value > r1.value { r2 } else { r1 };
+            let (z0, z1) = if *center {
+                (half(h).neg(), half(h))
+            } else {
+                (Num::constant(0.0), h.clone())
+            };
+            LocalShape {
+                lo: [r.neg(), r.neg(), z0],
+                hi: [r.clone(), r.clone(), z1],
+            }
+        }
+        Primitive::Sphere { r } => LocalShape {
+            lo: std::array::from_fn(|_| r.neg()),
+            hi: std::array::from_fn(|_| r.clone()),
+        },
+    }
+}
+
+/// World interval `(low, high)` of the part along each world axis, as numbers.
+pub fn world_intervals(part: &Part) -> Option<[(Num, Num); 3]> {
+    let align = alignment(part)?;
+    let shape = local_shape(&part.primitive);
+    Some(std::array::from_fn(|i| {
+        let (j, sign) = align[i];
+        let t = &part.world.m[i][3];
+        let w = &part.world.m[i][j];
+        let a = place(t, w, &shape.lo[j]);
+        let b = place(t, w, &shape.hi[j]);
+        if sign > 0.0 { (a, b) } else { (b, a) }
+    }))
+}
+
+/// The world axis a cylinder's local z maps to.
+fn cylinder_axis(part: &Part) -> Option<usize> {
+    let align = alignment(part)?;
+    (0..3).find(|&i| align[i].0 == 2)
+}
+
+/// Every feature of `part` (index `index`), or `None` if the part is off the axes.
+pub fn part_features(part: &Part, index: usize) -> Option<Vec<Feature>> {
+    let iv = world_intervals(part)?;
+    let mut out = Vec::new();
+    let mut push = |kind, role: String, nums: Vec<Num>| {
+        out.push(Feature {
+            part: index,
+            kind,
+            role,
+            nums,
+        })
+    };
+    let center = |a: usize| {
+        iv[a]
+            .0
+            .add(&iv[a].1)
+            .mul(&Num::constant(0.5), FreezeSide::Right)
+    };
+    match &part.primitive {
+        Primitive::Cube { .. } => {
+            for a in 0..3 {
+                for (high, n) in [(false, &iv[a].0), (true, &iv[a].1)] {
+                    let kind = FeatureKind::Plane {
+                        axis: a as u8,
+                        high,
+                    };
+                    push(
+                        kind,
+                        FACE_NAMES[a][high as usize].to_string(),
+                        vec![n.clone()],
+                    );
+                }
+            }
+            for a in 0..3 {
+                let others: Vec<Num> = (0..3).filter(|&b| b != a).map(center).collect();
+                let role = format!("{}_axis", AXIS_NAMES[a]);
+                push(FeatureKind::AxisLine { axis: a as u8 }, role, others);
+            }
+            for c in 0..8u8 {
+                let sides = [c & 1 != 0, c & 2 != 0, c & 4 != 0];
+                let nums = (0..3)
+                    .map(|a| {
+                        if sides[a] {
+                            iv[a].1.clone()
+                        } else {
+                            iv[a].0.clone()
+                        }
+                    })
+                    .collect();
+                let role = (0..3)
+                    .map(|a| FACE_NAMES[a][sides[a] as usize])
+                    .collect::<Vec<_>>()
+                    .join("_");
+                push(FeatureKind::Point { sides, cap: false }, role, nums);
+            }
+        }
+        Primitive::Cylinder { .. } => {
+            let axis = cylinder_axis(part)?;
+            for (high, n) in [(false, &iv[axis].0), (true, &iv[axis].1)] {
+                let kind = FeatureKind::Plane {
+                    axis: axis as u8,
+                    high,
+                };
+                push(
+                    kind,
+                    FACE_NAMES[axis][high as usize].to_string(),
+                    vec![n.clone()],
+                );
+            }
+            let others: Vec<Num> = (0..3).filter(|&b| b != axis).map(center).collect();
+            push(
+                FeatureKind::AxisLine { axis: axis as u8 },
+                "axis".into(),
+                others,
+            );
+            for (high, end) in [(false, &iv[axis].0), (true, &iv[axis].1)] {
+                let nums = (0..3)
+                    .map(|a| if a == axis { end.clone() } else { center(a) })
+                    .collect();
+                let mut sides = [false; 3];
+                sides[axis] = high;
+                let role = format!("{}_center", FACE_NAMES[axis][high as usize]);
+                push(FeatureKind::Point { sides, cap: true }, role, nums);
+            }
+        }
+        Primitive::Sphere { .. } => {
+            let nums = (0..3).map(center).collect();
+            push(
+                FeatureKind::Point {
+                    sides: [false; 3],
+                    cap: true,
+                },
+                "center".into(),
+                nums,
+            );
+        }
+    }
+    let axial =
+        cylinder_axis(part).filter(|_| matches!(part.primitive, Primitive::Cylinder { .. }));
+    for a in 0..3 {
+        let role = if Some(a) == axial {
+            "length"
+        } else {
+            EXTENT_NAMES[a]
+        };
+        push(
+            FeatureKind::Extent { axis: a as u8 },
+            role.to_string(),
+            vec![iv[a].1.sub(&iv[a].0)],
+        );
+    }
+    Some(out)
+}

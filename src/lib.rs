@@ -1,0 +1,53 @@
+//! `reparamc`: re-parameterize OpenSCAD models.
+//!
+//! The pipeline, stage by stage (see DESIGN.md): `front` parses and evaluates a model into
+//! the `ir` (slots, parts, affine features); `analysis` finds the geometric relations that
+//! hold on it; `back` presents and writes the results. Every stage is usable as a library;
+//! `main.rs` is only the command line.
+
+pub mod analysis;
+pub mod back;
+pub mod front;
+pub mod ir;
+
+use front::diag::DResult;
+use front::eval::Evaluated;
+use front::source::SourceMap;
+use std::path::Path;
+
+/// Stack for evaluation: deeply nested models and recursion up to the call-depth limit
+/// need more than a default thread stack.
+const EVAL_STACK_BYTES: usize = 1 << 30;
+
+/// Runs `f` on a thread with a large stack and returns its result.
+pub fn with_large_stack<T: Send>(f: impl FnOnce() -> T + Send) -> T {
+    std::thread::scope(|s| {
+        let handle = std::thread::Builder::new()
+            .name("reparamc-eval".into())
+            .stack_size(EVAL_STACK_BYTES)
+            .spawn_scoped(s, f);
+        match handle {
+            Ok(h) => match h.join() {
+                Ok(v) => v,
+                Err(panic) => std::panic::resume_unwind(panic),
+            },
+            Err(e) => panic!("cannot start the evaluation thread: {e}"),
+        }
+    })
+}
+
+/// Reads, parses and evaluates the model at `path` (and what it includes).
+pub fn load_model(sources: &mut SourceMap, path: &Path) -> DResult<Evaluated> {
+    with_large_stack(|| {
+        let loaded = front::load::load_file(sources, path)?;
+        front::eval::evaluate(sources, &loaded)
+    })
+}
+
+/// Parses and evaluates model text as if it were the file `path`.
+pub fn load_model_text(sources: &mut SourceMap, path: &Path, text: &[u8]) -> DResult<Evaluated> {
+    with_large_stack(|| {
+        let loaded = front::load::load_bytes(sources, path, text.to_vec())?;
+        front::eval::evaluate(sources, &loaded)
+    })
+}
