@@ -236,7 +236,10 @@ mod tests {
         );
         assert_eq!(id("[Shape]"), None);
         assert_eq!(id("legs, one at each corner").as_deref(), Some("legs"));
-        assert_eq!(id("this long sentence names nothing at all here"), None);
+        assert_eq!(
+            id("very long winding sentence naming nothing much here"),
+            None
+        );
         assert_eq!(
             id("footrest rungs on all four sides").as_deref(),
             Some("footrest_rungs")

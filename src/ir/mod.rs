@@ -87,6 +87,12 @@ impl Model {
             .unwrap_or(0.0)
     }
 
+    /// The parts with every number evaluated at `values` (slot values by id), or `None` if
+    /// some number is not affine in the slots (then the program must be run again).
+    pub fn parts_at(&self, values: &[f64]) -> Option<Vec<Part>> {
+        self.parts.iter().map(|p| p.at(values)).collect()
+    }
+
     /// Every feature of every axis-aligned part.
     pub fn features(&self) -> Vec<Feature> {
         self.parts

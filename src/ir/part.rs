@@ -169,6 +169,36 @@ pub struct Part {
 }
 
 impl Part {
+    /// This part with every number evaluated at `values` (constants, no slot forms), or
+    /// `None` if some number is not affine in the slots.
+    pub fn at(&self, values: &[f64]) -> Option<Part> {
+        let eval = |n: &Num| -> Option<Num> { Some(Num::constant(n.affine()?.eval(values))) };
+        let mut m = self.world.m.clone();
+        for row in m.iter_mut() {
+            for n in row.iter_mut() {
+                *n = eval(n)?;
+            }
+        }
+        let primitive = match &self.primitive {
+            Primitive::Cube { size, center } => Primitive::Cube {
+                size: [eval(&size[0])?, eval(&size[1])?, eval(&size[2])?],
+                center: *center,
+            },
+            Primitive::Cylinder { h, r1, r2, center } => Primitive::Cylinder {
+                h: eval(h)?,
+                r1: eval(r1)?,
+                r2: eval(r2)?,
+                center: *center,
+            },
+            Primitive::Sphere { r } => Primitive::Sphere { r: eval(r)? },
+        };
+        Some(Part {
+            primitive,
+            world: Transform { m },
+            ..self.clone()
+        })
+    }
+
     /// World-space axis-aligned bounding box at the current values.
     pub fn world_bounds(&self) -> ([f64; 3], [f64; 3]) {
         let (lo, hi) = self.primitive.local_bounds();

@@ -48,6 +48,7 @@ pub fn values_equal(a: &Value, b: &Value) -> bool {
 
 impl Eval<'_> {
     pub fn expr(&mut self, e: &Expr, scope: &Rc<Scope>) -> DResult<Value> {
+        self.tick(e.span)?;
         match &e.kind {
             ExprKind::Number { value, .. } => Ok(Value::Num(self.literal(e.span, *value))),
             ExprKind::Bool(b) => Ok(Value::Bool(*b)),
@@ -126,6 +127,23 @@ impl Eval<'_> {
                 })))
             }
         }
+    }
+
+    /// Counts one step of work; a model past [`super::MAX_STEPS`] is too large.
+    pub fn tick(&mut self, span: Span) -> DResult<()> {
+        self.steps += 1;
+        if self.steps > super::MAX_STEPS || self.parts.len() > super::MAX_PARTS {
+            return Err(Box::new(
+                Diagnostic::error("E0304", "the model is too large to evaluate")
+                    .at(span, "evaluation stopped here")
+                    .with_note(format!(
+                        "reparamc evaluates at most {} expressions and {} parts; check loop bounds and recursion",
+                        super::MAX_STEPS,
+                        super::MAX_PARTS
+                    )),
+            ));
+        }
+        Ok(())
     }
 
     fn variable(&mut self, name: &str, span: Span, scope: &Rc<Scope>) -> DResult<Value> {
@@ -258,6 +276,20 @@ impl Eval<'_> {
             return f(self, scope);
         };
         let v = self.expr(&first.value, scope)?;
+        if let Value::Range(r) = &v {
+            // Ranges are walked lazily: a long one must not be materialised.
+            self.freeze_value(&v, "a range bound");
+            for k in 0..r.count() {
+                self.tick(first.value.span)?;
+                let inner = Scope::child(scope);
+                inner.set(
+                    &first.name.name,
+                    Value::constant(r.start.value + r.step.value * k as f64),
+                );
+                self.for_each_binding(rest, &inner, f)?;
+            }
+            return Ok(());
+        }
         for item in self.iteration_values(&v) {
             let inner = Scope::child(scope);
             inner.set(&first.name.name, item);

@@ -32,6 +32,13 @@ use std::rc::Rc;
 /// How deep module and function calls may nest before we call it endless recursion.
 pub const MAX_CALL_DEPTH: usize = 1000;
 
+/// How many expressions one pass may evaluate before the model counts as too large (a
+/// mistyped loop bound, or exponential recursion, would otherwise run for hours).
+pub const MAX_STEPS: u64 = 5_000_000;
+
+/// How many parts a model may have.
+pub const MAX_PARTS: usize = 200_000;
+
 /// How many freeze-and-rerun rounds evaluation may take.
 const MAX_PASSES: usize = 64;
 
@@ -105,6 +112,8 @@ pub struct Eval<'a> {
     background: Vec<Part>,
     root: Option<CsgNode>,
     depth: usize,
+    /// Expressions evaluated in this pass (see [`MAX_STEPS`]).
+    steps: u64,
     used_scopes: HashMap<FileId, Rc<Scope>>,
     /// Per slot: the name of what it belongs to (if known yet) and its role.
     slot_roles: HashMap<SlotId, (Option<String>, String)>,
@@ -265,6 +274,7 @@ pub fn evaluate(sources: &SourceMap, loaded: &Loaded) -> DResult<Evaluated> {
             background: Vec::new(),
             root: None,
             depth: 0,
+            steps: 0,
             used_scopes: HashMap::new(),
             slot_roles: HashMap::new(),
             warnings: Vec::new(),
@@ -287,6 +297,14 @@ pub fn evaluate(sources: &SourceMap, loaded: &Loaded) -> DResult<Evaluated> {
             warnings,
             ..
         } = ev;
+        if parts.is_empty() {
+            let main = Span::new(loaded.main, 0, 0);
+            return Err(Box::new(
+                Diagnostic::error("E0500", "the model draws nothing")
+                    .at(main, "no cube, cylinder or sphere is made by this file")
+                    .with_note("reparamc re-parameterizes solids; a model needs at least one primitive that is not `%` or `*`"),
+            ));
+        }
         if new_freezes.is_empty() || pass >= MAX_PASSES {
             let model = build_model(sources, &lits, parts, background, csg, slot_roles);
             return Ok(Evaluated { model, warnings });

@@ -129,19 +129,74 @@ impl Expected {
     }
 
     fn add_rule(&mut self, rule: Rule) {
-        use Rule::*;
         match rule {
-            empty_stmt => self.add_token(";"),
-            block | child_block => self.add_token("{"),
-            EOI => self.end = true,
-            ident | param | params | binding | bindings | arg_name => self.name = true,
-            instance | call_stmt | if_stmt | modifier | module_id | assignment | module_def
-            | function_def | include_stmt | include_kind | kw_module => self.statement = true,
-            op_or | op_and | op_eq | op_ne | op_le | op_ge | op_lt | op_gt | op_add | op_sub
-            | op_mul | op_div | op_mod | op_pow => self.operator = true,
-            // Continuations of a complete expression or statement: not worth naming.
-            call_args | index | member | kw_else | range_rest | c_for_tail => {}
-            _ => self.expression = true,
+            Rule::empty_stmt => self.add_token(";"),
+            Rule::block | Rule::child_block => self.add_token("{"),
+            Rule::EOI => self.end = true,
+            Rule::ident | Rule::param | Rule::params | Rule::binding | Rule::bindings => {
+                self.name = true;
+            }
+            Rule::instance
+            | Rule::call_stmt
+            | Rule::if_stmt
+            | Rule::modifier
+            | Rule::module_id
+            | Rule::assignment
+            | Rule::module_def
+            | Rule::function_def
+            | Rule::include_stmt
+            | Rule::include_kind
+            | Rule::kw_module => self.statement = true,
+            Rule::op_or
+            | Rule::op_and
+            | Rule::op_eq
+            | Rule::op_ne
+            | Rule::op_le
+            | Rule::op_ge
+            | Rule::op_lt
+            | Rule::op_gt
+            | Rule::op_add
+            | Rule::op_sub
+            | Rule::op_mul
+            | Rule::op_div
+            | Rule::op_mod
+            | Rule::op_pow => self.operator = true,
+            Rule::expr
+            | Rule::ternary
+            | Rule::or_expr
+            | Rule::and_expr
+            | Rule::eq_expr
+            | Rule::rel_expr
+            | Rule::add_expr
+            | Rule::mul_expr
+            | Rule::unary
+            | Rule::postfix
+            | Rule::prefix_op
+            | Rule::paren
+            | Rule::bracket
+            | Rule::lit_true
+            | Rule::lit_false
+            | Rule::lit_undef
+            | Rule::number
+            | Rule::string
+            | Rule::fn_literal
+            | Rule::let_expr
+            | Rule::assert_expr
+            | Rule::echo_expr
+            | Rule::lc_for
+            | Rule::lc_if
+            | Rule::lc_each
+            | Rule::arg
+            | Rule::args
+            | Rule::kw_function
+            | Rule::kw_let
+            | Rule::kw_assert
+            | Rule::kw_echo
+            | Rule::kw_for
+            | Rule::kw_if
+            | Rule::kw_each => self.expression = true,
+            // Continuations of what is already complete, or too vague to name.
+            _ => {}
         }
     }
 

@@ -1,0 +1,89 @@
+//! The command line: flags in, library calls, diagnostics and files out.
+//!
+//! One module per subcommand; this one holds the flag definitions, the shared output
+//! helpers and the exit codes. Nothing here computes results: it calls the library.
+
+mod inspect;
+
+use clap::{Parser, Subcommand};
+use codespan_reporting::term::termcolor::{ColorChoice, StandardStream};
+use reparamc::front::diag::Diagnostic;
+use reparamc::front::source::SourceMap;
+use std::io::{IsTerminal, Write};
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+/// Exit code for a model that could not be compiled (a diagnostic was printed).
+pub const EXIT_MODEL_ERROR: u8 = 1;
+/// Exit code for a failure to write output.
+pub const EXIT_IO_ERROR: u8 = 3;
+
+#[derive(Parser)]
+#[command(
+    name = "reparamc",
+    version,
+    about = "Re-parameterize OpenSCAD models: find the relations a design relies on and expose a few meaningful sliders."
+)]
+pub struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Show a model's parameters, parts and the geometric relations that hold on it.
+    Inspect(inspect::Args),
+}
+
+/// Runs the command line and returns the process exit code.
+pub fn run() -> ExitCode {
+    let cli = Cli::parse();
+    match cli.command {
+        Command::Inspect(args) => inspect::run(args),
+    }
+}
+
+fn stderr() -> StandardStream {
+    let choice = if std::io::stderr().is_terminal() {
+        ColorChoice::Auto
+    } else {
+        ColorChoice::Never
+    };
+    StandardStream::stderr(choice)
+}
+
+/// Prints diagnostics rustc-style on standard error.
+pub fn report(sources: &SourceMap, diags: &[Diagnostic]) {
+    let mut err = stderr();
+    for d in diags {
+        d.emit(sources, &mut err);
+    }
+}
+
+/// Writes `text` to standard output; a closed pipe (`| head`) is not an error.
+pub fn print_stdout(text: &str) -> ExitCode {
+    let mut out = std::io::stdout().lock();
+    match out.write_all(text.as_bytes()).and_then(|_| out.flush()) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: cannot write output: {e}");
+            ExitCode::from(EXIT_IO_ERROR)
+        }
+    }
+}
+
+/// Loads a model, printing its diagnostics; `None` after an error was reported.
+pub fn load(path: &PathBuf) -> Option<(SourceMap, reparamc::front::eval::Evaluated)> {
+    let mut sources = SourceMap::new();
+    match reparamc::load_model(&mut sources, path) {
+        Ok(e) => {
+            report(&sources, &e.warnings);
+            Some((sources, e))
+        }
+        Err(d) => {
+            report(&sources, &[*d]);
+            None
+        }
+    }
+}
