@@ -1,5 +1,7 @@
 //! The back end: what the compiler writes for people and tools.
 //!
-//! `inspect` presents a model's parameters, parts and relations.
+//! `inspect` presents a model's parameters, parts and relations; `rewrite` writes a model
+//! back with other slot values.
 
 pub mod inspect;
+pub mod rewrite;
