@@ -9,6 +9,7 @@ pub mod analysis;
 pub mod back;
 pub mod front;
 pub mod ir;
+pub mod variation;
 
 use front::diag::DResult;
 use front::eval::Evaluated;
@@ -41,6 +42,18 @@ pub fn load_model(sources: &mut SourceMap, path: &Path) -> DResult<Evaluated> {
     with_large_stack(|| {
         let loaded = front::load::load_file(sources, path)?;
         front::eval::evaluate(sources, &loaded)
+    })
+}
+
+/// Like [`load_model`], also returning what was parsed (for matching variant files).
+pub fn load_model_parsed(
+    sources: &mut SourceMap,
+    path: &Path,
+) -> DResult<(front::load::Loaded, Evaluated)> {
+    with_large_stack(|| {
+        let loaded = front::load::load_file(sources, path)?;
+        let evaluated = front::eval::evaluate(sources, &loaded)?;
+        Ok((loaded, evaluated))
     })
 }
 

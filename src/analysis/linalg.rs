@@ -32,3 +32,15 @@ pub fn rank(rows: &[&Affine], slots: usize) -> usize {
 pub fn nullity(rows: &[&Affine], slots: usize) -> usize {
     slots - rank(rows, slots)
 }
+
+/// The Moore–Penrose pseudo-inverse with a tolerance relative to the largest singular value.
+pub fn pinv(m: &DMatrix<f64>) -> DMatrix<f64> {
+    if m.is_empty() {
+        return m.transpose();
+    }
+    let svd = m.clone().svd(true, true);
+    let smax = svd.singular_values.iter().fold(0.0f64, |a, &s| a.max(s));
+    let eps = 1e-10 * smax.max(f64::MIN_POSITIVE) * (m.nrows().max(m.ncols()) as f64);
+    svd.pseudo_inverse(eps)
+        .unwrap_or_else(|_| DMatrix::zeros(m.ncols(), m.nrows()))
+}

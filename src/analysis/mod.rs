@@ -5,7 +5,12 @@
 //! floats are compared.
 
 pub mod candidates;
+pub mod cutoff;
+pub mod discover;
 pub mod linalg;
+pub mod project;
+pub mod ranges;
+pub mod reparam;
 pub mod tolerance;
 
 pub use candidates::{Candidate, Candidates, RelationKind, find_candidates};

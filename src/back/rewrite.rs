@@ -53,6 +53,7 @@ mod tests {
             id,
             name: format!("s{id}"),
             variable: None,
+            position: false,
             value,
             span: Span::new(0, start, end),
             text: String::new(),
@@ -62,7 +63,11 @@ mod tests {
     #[test]
     fn replaces_only_changed_literals() {
         let text = "cube([10, 20, 30]); // keep";
-        let slots = [slot(0, 6, 8, 10.0), slot(1, 10, 12, 20.0), slot(2, 14, 16, 30.0)];
+        let slots = [
+            slot(0, 6, 8, 10.0),
+            slot(1, 10, 12, 20.0),
+            slot(2, 14, 16, 30.0),
+        ];
         let out = with_slot_values(text, 0, &slots, &[12.5, 20.0, -3.0]);
         assert_eq!(out, "cube([12.5, 20, (-3)]); // keep");
     }

@@ -2,18 +2,18 @@
 //!
 //! Owns the pest grammar `grammar/openscad.pest` and every step between text and tree:
 //!
-//! 1. [`scan`] walks the text once, collecting the comments (the grammar skips them) and
+//! 1. `scan` walks the text once, collecting the comments (the grammar skips them) and
 //!    rejecting unterminated strings and block comments, and brackets nested absurdly
 //!    deep, with specific diagnostics;
-//! 2. pest parses; [`errors`] turns its failures into readable diagnostics;
+//! 2. pest parses; `errors` turns its failures into readable diagnostics;
 //! 3. the nesting of the parse tree is measured without recursion and refused beyond
 //!    [`MAX_DEPTH`];
-//! 4. [`build`] turns the pairs into the AST, with tight spans and decoded literals
-//!    ([`strings`]).
+//! 4. `build` turns the pairs into the AST, with tight spans and decoded literals
+//!    (`strings`).
 //!
 //! Stack safety: pest and the builder recurse once per nesting level. pest checks its own
 //! stack and fails cleanly when it runs short; the builder runs on the caller's stack only
-//! for trees at most [`INLINE_DEPTH`] deep. Deeper trees, and inputs pest ran short of
+//! for trees at most `INLINE_DEPTH` (100) deep. Deeper trees, and inputs pest ran short of
 //! stack on, are parsed and built again on a helper thread with a stack sized for
 //! [`MAX_DEPTH`] (real models never get there). So any input, on any thread, gives the
 //! same AST or diagnostic, and nesting beyond [`MAX_DEPTH`] is "nesting too deep".
@@ -89,8 +89,8 @@ fn parse_and_build(
     build::Builder::new(file, text, &scanned.comments).program(pairs)
 }
 
-/// Runs `work` on a scoped thread whose stack fits a tree `depth` deep; on the current
-/// thread if no thread can be started.
+/// Runs `work` on a scoped thread whose stack fits a tree `depth` deep. If no thread can
+/// be started, the input is refused rather than risked on the current stack.
 fn on_big_stack<T: Send>(depth: usize, work: impl FnOnce() -> DResult<T> + Send) -> DResult<T> {
     let stack = (depth + 32).saturating_mul(STACK_PER_LEVEL);
     std::thread::scope(|scope| {

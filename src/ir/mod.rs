@@ -24,6 +24,8 @@ pub struct Slot {
     pub id: SlotId,
     /// A readable name from the source: `seat.width`, `leg_height`, `part7.x`.
     pub name: String,
+    /// Whether it sets a position (a `translate` offset) rather than a size.
+    pub position: bool,
     /// The top-level variable this literal is the value of, if any.
     pub variable: Option<String>,
     pub value: f64,

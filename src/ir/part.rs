@@ -166,6 +166,9 @@ pub struct Part {
     pub fragments: [f64; 3],
     /// `#` highlight (still geometry).
     pub highlighted: bool,
+    /// The statements whose execution made this part, outermost first (a module body's
+    /// statements follow the call that ran them).
+    pub statements: Vec<Span>,
 }
 
 impl Part {

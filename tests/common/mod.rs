@@ -221,6 +221,7 @@ pub fn part_from_csg(c: &CsgPart) -> Part {
         misaligned: None,
         fragments: [0.0, 12.0, 2.0],
         highlighted: false,
+        statements: Vec::new(),
     }
 }
 

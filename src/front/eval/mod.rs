@@ -112,6 +112,8 @@ pub struct Eval<'a> {
     background: Vec<Part>,
     root: Option<CsgNode>,
     depth: usize,
+    /// The statements being executed, outermost first (recorded on each part).
+    chain: Vec<Span>,
     /// Expressions evaluated in this pass (see [`MAX_STEPS`]).
     steps: u64,
     used_scopes: HashMap<FileId, Rc<Scope>>,
@@ -275,6 +277,7 @@ pub fn evaluate(sources: &SourceMap, loaded: &Loaded) -> DResult<Evaluated> {
             root: None,
             depth: 0,
             steps: 0,
+            chain: Vec::new(),
             used_scopes: HashMap::new(),
             slot_roles: HashMap::new(),
             warnings: Vec::new(),
@@ -478,8 +481,10 @@ fn build_model(
         .enumerate()
         .map(|(i, (&s, name))| {
             let span = lits.spans[s as usize];
+            let role = roles.get(&s).map(|(_, r)| r.as_str()).unwrap_or("value");
             Slot {
                 id: i as SlotId,
+                position: matches!(role, "x" | "y" | "z"),
                 variable: lits.is_named(s).then(|| name.clone()),
                 name,
                 value: lits.values[s as usize],

@@ -312,6 +312,7 @@ impl<'a> Eval<'a> {
             misaligned: ctx.misaligned.clone(),
             fragments,
             highlighted: ctx.highlight,
+            statements: self.chain.clone(),
         };
         self.name_primitive_slots(&part, ctx);
         if ctx.background {

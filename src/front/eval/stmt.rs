@@ -164,19 +164,21 @@ impl<'a> Eval<'a> {
         scope: &Rc<Scope>,
         ctx: &Ctx<'a>,
     ) -> DResult<Option<CsgNode>> {
-        match &stmt.kind {
+        self.chain.push(stmt.span);
+        let r = match &stmt.kind {
             StmtKind::Block(inner) => {
                 let s = Scope::child(scope);
                 let ctx = self.named_ctx(stmt, ctx);
-                let nodes = self.block(inner, &s, &ctx)?;
-                Ok(group(nodes))
+                self.block(inner, &s, &ctx).map(group)
             }
             StmtKind::Instance(inst) => {
                 let ctx = self.named_ctx(stmt, ctx);
                 self.instance(stmt, inst, scope, &ctx)
             }
             _ => Ok(None),
-        }
+        };
+        self.chain.pop();
+        r
     }
 
     /// The context with the statement's comment as the part name, if it has one.

@@ -60,7 +60,11 @@ impl<'a> Builder<'a> {
     /// The pair's span, its end moved back over blanks and comments.
     fn span(&self, pair: &P<'_>) -> Span {
         let span = pair.as_span();
-        Span::new(self.file, span.start(), self.trim_end(span.start(), span.end()))
+        Span::new(
+            self.file,
+            span.start(),
+            self.trim_end(span.start(), span.end()),
+        )
     }
 
     fn trim_end(&self, start: usize, mut end: usize) -> usize {
@@ -76,7 +80,9 @@ impl<'a> Builder<'a> {
     }
 
     fn comment_ending_at(&self, end: usize) -> Option<usize> {
-        let i = self.comments.partition_point(|c| (c.span.end as usize) < end);
+        let i = self
+            .comments
+            .partition_point(|c| (c.span.end as usize) < end);
         self.comments
             .get(i)
             .filter(|c| c.span.end as usize == end)
@@ -115,7 +121,9 @@ impl<'a> Builder<'a> {
 
     /// The pair's children, without keyword tokens.
     fn parts<'i>(&self, pair: P<'i>) -> Vec<P<'i>> {
-        pair.into_inner().filter(|p| !is_keyword(p.as_rule())).collect()
+        pair.into_inner()
+            .filter(|p| !is_keyword(p.as_rule()))
+            .collect()
     }
 
     /// Exactly `N` children (keywords excluded), or an internal error.

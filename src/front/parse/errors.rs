@@ -35,9 +35,7 @@ pub(super) fn from_pest(
     }
     let detailed = detailed_error(text);
     let err = detailed.as_ref().unwrap_or(err);
-    let offset = offset_of(err);
-    let expected = Expected::from_error(err);
-    let context = context_at(text, offset);
+    let (offset, context, expected) = expectation(text, err);
     let found = found(text, offset);
 
     let mut diag = expected
@@ -59,6 +57,26 @@ pub(super) fn from_pest(
         diag = diag.with_note(note);
     }
     Box::new(diag)
+}
+
+/// Where the error is, and what was expected there. pest places its error at the
+/// furthest rule it tried, and lists the literal tokens tried furthest, which may be
+/// further on: that place is better when those tokens are worth naming.
+fn expectation(text: &str, err: &PestError) -> (usize, Context, Expected) {
+    let rule_offset = offset_of(err);
+    if let Some(attempts) = err.parse_attempts()
+        && attempts.max_position > rule_offset
+    {
+        let offset = attempts.max_position;
+        let context = context_at(text, offset);
+        let expected = Expected::from_error(err, false, &context);
+        if !expected.items().is_empty() {
+            return (offset, context, expected);
+        }
+    }
+    let context = context_at(text, rule_offset);
+    let expected = Expected::from_error(err, true, &context);
+    (rule_offset, context, expected)
 }
 
 fn offset_of(err: &PestError) -> usize {
@@ -102,25 +120,37 @@ struct Expected {
 }
 
 impl Expected {
-    fn from_error(err: &PestError) -> Self {
+    /// The rules pest tried at its error position (`at_rules`), or else the literal
+    /// tokens it tried furthest, in human categories.
+    fn from_error(err: &PestError, at_rules: bool, context: &Context) -> Self {
         let mut expected = Expected::default();
-        if let ErrorVariant::ParsingError { positives, .. } = &err.variant {
+        let attempts = err.parse_attempts();
+        if let ErrorVariant::ParsingError { positives, .. } = &err.variant
+            && at_rules
+        {
             for &rule in positives {
                 expected.add_rule(rule);
             }
         }
-        if let Some(attempts) = err.parse_attempts() {
+        let tokens_here = attempts
+            .as_ref()
+            .is_some_and(|a| !at_rules || a.max_position == offset_of(err));
+        if let Some(attempts) = attempts.filter(|_| tokens_here) {
             // Literal tokens display as themselves (ranges and case-insensitive ones never
             // match a listed token).
             for token in attempts.expected_tokens() {
                 expected.add_token(&token.to_string());
             }
         }
-        expected.tidy();
+        expected.tidy(context);
         expected
     }
 
     fn add_token(&mut self, token: &str) {
+        if matches!(token, "module" | "include" | "use" | "#") {
+            // Only a statement starts with these.
+            self.statement = true;
+        }
         if let Some(&known) = TOKENS.iter().find(|&&t| t == token)
             && !self.tokens.contains(&known)
         {
@@ -201,11 +231,18 @@ impl Expected {
     }
 
     /// Drops tokens that only continue or start an expression when those are implied.
-    fn tidy(&mut self) {
+    fn tidy(&mut self, context: &Context) {
         if self.statement {
             // Where a statement may start, a name or `function` starts one, not an expression.
             self.expression = false;
             self.name = false;
+        }
+        if self.statement
+            && context.open.is_none_or(|(_, b)| b == b'{')
+            && context.statement.is_none()
+        {
+            // Between statements, `;` and `{` are just statements.
+            self.tokens.retain(|&t| t != ";" && t != "{");
         }
         let (operator, expression) = (self.operator, self.expression);
         self.tokens.retain(|&t| match t {

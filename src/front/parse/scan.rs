@@ -63,8 +63,12 @@ struct Scanner<'a> {
     /// Brackets open at `pos`: offset and character.
     open: Vec<(usize, u8)>,
     /// Per level of `{ }` (the file is the first): where its current statement starts,
-    /// `None` between statements. An `include`/`use` word starts an include only there.
+    /// `None` between statements.
     statements: Vec<Option<usize>>,
+    /// The last significant ASCII character before `pos` (`;` at the start). An
+    /// `include`/`use` word starts an include only after `;`, `{`, `}` or `)`, outside
+    /// brackets: anywhere else it is a name.
+    previous: u8,
 }
 
 impl<'a> Scanner<'a> {
@@ -78,6 +82,7 @@ impl<'a> Scanner<'a> {
             comments: Vec::new(),
             open: Vec::new(),
             statements: vec![None],
+            previous: b';',
         }
     }
 
@@ -96,17 +101,22 @@ impl<'a> Scanner<'a> {
 
     fn token(&mut self, byte: u8) -> DResult<()> {
         // Non-ASCII bytes are either a no-break space (a blank) or a syntax error.
-        if byte.is_ascii() && !self.in_expression() {
+        if !byte.is_ascii() {
+            self.pos += 1;
+            return Ok(());
+        }
+        if !self.in_expression() {
             let pos = self.pos;
             if let Some(current) = self.statements.last_mut() {
                 current.get_or_insert(pos);
             }
         }
+        let previous = std::mem::replace(&mut self.previous, byte);
         match byte {
             b'"' => self.string()?,
             b'(' | b'[' | b'{' => self.open_bracket(byte)?,
-            b')' | b']' | b'}' => self.close_bracket(byte),
-            b'$' | b'_' | b'0'..=b'9' | b'a'..=b'z' | b'A'..=b'Z' => self.word(),
+            b')' | b']' | b'}' => self.close_bracket(),
+            b'$' | b'_' | b'0'..=b'9' | b'a'..=b'z' | b'A'..=b'Z' => self.word(previous)?,
             b';' => {
                 self.end_statement();
                 self.pos += 1;
@@ -209,57 +219,65 @@ impl<'a> Scanner<'a> {
         Ok(())
     }
 
-    fn close_bracket(&mut self, byte: u8) {
-        let opener = match byte {
-            b')' => b'(',
-            b']' => b'[',
-            _ => b'{',
-        };
-        if self.open.last().is_some_and(|&(_, b)| b == opener) {
-            self.open.pop();
-            if opener == b'{' && self.statements.len() > 1 {
-                self.statements.pop();
-                // A block ends the statement it belongs to (an `else` may start another).
-                self.end_statement();
-            }
+    /// Closes the innermost bracket, whichever it is: a mismatch is a syntax error pest
+    /// reports, and popping anyway keeps garbage like `(]` from piling up depth.
+    fn close_bracket(&mut self) {
+        if let Some((_, opener)) = self.open.pop()
+            && opener == b'{'
+            && self.statements.len() > 1
+        {
+            self.statements.pop();
+            // A block ends the statement it belongs to (an `else` may start another).
+            self.end_statement();
         }
         self.pos += 1;
     }
 
     /// A name, keyword or number; `include <...>` and `use <...>` skip their path, which
     /// may contain anything but `>`, tabs and line breaks (even `//`).
-    fn word(&mut self) {
+    fn word(&mut self, previous: u8) -> DResult<()> {
         let start = self.pos;
         while matches!(self.bytes.get(self.pos), Some(b) if b.is_ascii_alphanumeric() || *b == b'_' || *b == b'$')
         {
             self.pos += 1;
         }
         let word = &self.text[start..self.pos];
-        let starts_statement =
-            !self.in_expression() && self.statements.last() == Some(&Some(start));
-        if starts_statement && (word == "include" || word == "use") {
-            self.include_path();
+        let may_include = !self.in_expression() && matches!(previous, b';' | b'{' | b'}' | b')');
+        if may_include && (word == "include" || word == "use") {
+            return self.include_path(start);
         }
+        Ok(())
     }
 
-    fn include_path(&mut self) {
+    fn include_path(&mut self, keyword_start: usize) -> DResult<()> {
         let mut at = self.pos;
         while matches!(self.bytes.get(at), Some(b' ' | b'\t' | b'\r' | b'\n')) {
             at += 1;
         }
         if self.bytes.get(at) != Some(&b'<') {
-            return;
+            return Ok(());
         }
+        let open = at;
         at += 1;
         while matches!(self.bytes.get(at), Some(b) if !matches!(b, b'>' | b'\t' | b'\r' | b'\n')) {
             at += 1;
         }
-        if self.bytes.get(at) == Some(&b'>') {
-            at += 1;
+        if self.bytes.get(at) != Some(&b'>') {
+            let keyword = &self.text[keyword_start..self.pos];
+            return Err(Box::new(
+                Diagnostic::error(SYNTAX_ERROR, format!("unterminated `{keyword}` path"))
+                    .at(
+                        Span::new(self.file, open, open + 1),
+                        "this path is never closed",
+                    )
+                    .with_note("the path ends with `>` on the same line"),
+            ));
         }
-        self.pos = at;
+        self.pos = at + 1;
         // An include is a statement of its own: another may follow directly.
         self.end_statement();
+        self.previous = b';';
+        Ok(())
     }
 }
 

@@ -57,7 +57,9 @@ impl<'a> Builder<'a> {
     #[inline(never)]
     fn lc_outside_vector(&self, pair: P<'_>, _depth: usize) -> DResult<Expr> {
         let text = pair.as_str();
-        let keyword = &text[..text.find(|c: char| !c.is_alphanumeric()).unwrap_or(text.len())];
+        let keyword = &text[..text
+            .find(|c: char| !c.is_alphanumeric())
+            .unwrap_or(text.len())];
         let start = pair.as_span().start();
         Err(Box::new(
             Diagnostic::error(

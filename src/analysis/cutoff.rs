@@ -1,0 +1,126 @@
+//! Where to stop taking constraints: change-point detection on the distortion curve.
+//!
+//! The curve rises slowly while harmless relations are added, then jumps when a relation
+//! fights the variations. The paper finds the jump on the curve's central-difference
+//! derivative; the published code puts a single mean-shift change point on the curve
+//! itself. Both are computed and reported; the paper's decides.
+
+use serde::Serialize;
+
+#[derive(Debug, Clone, Serialize)]
+pub struct Cutoff {
+    /// Keep the first `keep` chosen constraints.
+    pub keep: usize,
+    /// The paper's change point (on the derivative), as a count of constraints kept.
+    pub paper: usize,
+    /// The published code's change point (on the curve), as a count of constraints kept.
+    pub published: usize,
+    /// Why, in words.
+    pub reason: String,
+}
+
+/// The split `k` (1..n) minimising the squared deviation of `v[..k]` and `v[k..]` from
+/// their means.
+fn mean_shift(v: &[f64]) -> usize {
+    let n = v.len();
+    if n < 2 {
+        return n;
+    }
+    let sse = |s: &[f64]| {
+        let m = s.iter().sum::<f64>() / s.len() as f64;
+        s.iter().map(|x| (x - m) * (x - m)).sum::<f64>()
+    };
+    (1..n)
+        .min_by(|&a, &b| {
+            let ca = sse(&v[..a]) + sse(&v[a..]);
+            let cb = sse(&v[..b]) + sse(&v[b..]);
+            ca.total_cmp(&cb)
+        })
+        .unwrap_or(n)
+}
+
+/// Central differences (one-sided at the ends).
+fn derivative(curve: &[f64]) -> Vec<f64> {
+    let n = curve.len();
+    (0..n)
+        .map(|i| {
+            let lo = i.saturating_sub(1);
+            let hi = (i + 1).min(n - 1);
+            if hi == lo {
+                0.0
+            } else {
+                (curve[hi] - curve[lo]) / (hi - lo) as f64
+            }
+        })
+        .collect()
+}
+
+/// Decides how many chosen constraints to keep from the distortion `curve`
+/// (`curve[s]` after `s` constraints). `tolerance` is the distortion the variations' own
+/// noise explains: a curve that never exceeds it keeps everything.
+pub fn cutoff(curve: &[f64], tolerance: f64) -> Cutoff {
+    let steps = curve.len().saturating_sub(1);
+    if steps == 0 {
+        return Cutoff {
+            keep: 0,
+            paper: 0,
+            published: 0,
+            reason: "no constraints were chosen".into(),
+        };
+    }
+    let published = mean_shift(curve).saturating_sub(1);
+    let deriv = derivative(curve);
+    // A jump between steps s−1 and s raises the central difference from index s−1 on,
+    // so the derivative's level shift is at s−1: keep s−1 constraints.
+    let paper = mean_shift(&deriv).min(steps);
+    let max = curve.iter().copied().fold(0.0, f64::max);
+    if max <= tolerance {
+        return Cutoff {
+            keep: steps,
+            paper,
+            published,
+            reason: format!(
+                "every constraint is compatible with the variations (distortion never exceeds {tolerance:.3})"
+            ),
+        };
+    }
+    // Never keep a step whose distortion is already past the jump.
+    let mut keep = paper;
+    while keep > 0 && curve[keep] > tolerance && curve[keep] - curve[keep - 1] > tolerance {
+        keep -= 1;
+    }
+    Cutoff {
+        keep,
+        paper,
+        published,
+        reason: format!(
+            "the distortion's derivative jumps after {keep} constraints (distortion {:.4} there, {:.4} one step later)",
+            curve[keep],
+            curve.get(keep + 1).copied().unwrap_or(curve[keep])
+        ),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn finds_the_jump() {
+        let mut curve = vec![0.0];
+        for i in 1..=20 {
+            curve.push(0.001 * i as f64);
+        }
+        for i in 0..10 {
+            curve.push(0.3 + 0.05 * i as f64);
+        }
+        let c = cutoff(&curve, 0.01);
+        assert_eq!(c.keep, 20, "{c:?}");
+    }
+
+    #[test]
+    fn keeps_everything_when_nothing_fights() {
+        let curve: Vec<f64> = (0..30).map(|i| 1e-6 * i as f64).collect();
+        assert_eq!(cutoff(&curve, 0.01).keep, 29);
+    }
+}

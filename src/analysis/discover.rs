@@ -1,0 +1,117 @@
+//! Constraint discovery: which relations of the input do the variations share?
+//!
+//! The paper's greedy selection (`algorithms.md` §3): from the empty set, score every
+//! remaining candidate by projecting each variation's current point onto the chosen set plus
+//! that candidate and measuring how similar the projection stays (IoU, or image loss); keep
+//! the best (product over variations), drop candidates the chosen rows now imply (rank test),
+//! and record the distortion curve against the original variations. The cutoff is decided
+//! afterwards (`cutoff`).
+
+use super::candidates::Candidates;
+use super::project::{Faces, Projector, RowBasis, dense};
+use crate::ir::Affine;
+use nalgebra::DVector;
+
+/// How alike two settings of the model are (1 = identical), leaving out the `skip` parts.
+pub trait Similarity: Sync {
+    fn similarity(&self, a: &[f64], b: &[f64], skip: &[usize]) -> f64;
+}
+
+/// One variation as discovery sees it: its slot values and the parts it does without.
+#[derive(Debug, Clone)]
+pub struct Sample {
+    pub values: Vec<f64>,
+    pub optional: Vec<usize>,
+}
+
+/// The greedy order, its scores and the distortion after each step.
+#[derive(Debug, Clone)]
+pub struct Discovery {
+    /// Candidate indices in the order they were chosen.
+    pub order: Vec<usize>,
+    /// The product of similarities that won each step.
+    pub scores: Vec<f64>,
+    /// `curve[s]` = 1 − mean similarity of the variations projected onto the first `s`
+    /// chosen candidates to the original variations (`curve[0]` = 0).
+    pub curve: Vec<f64>,
+    /// For each step, the candidates that became implied (dropped by the rank test).
+    pub implied: Vec<Vec<usize>>,
+}
+
+/// All rows of a candidate, dense.
+fn rows_of(c: &Candidates, i: usize) -> Vec<&Affine> {
+    c.list[i].rows.iter().collect()
+}
+
+fn implied(basis: &RowBasis, rows: &[&Affine], d: usize) -> bool {
+    rows.iter().all(|r| basis.contains(&dense(r, d)))
+}
+
+/// Runs the greedy selection to the end (every candidate chosen or implied).
+pub fn discover(
+    faces: &Faces,
+    candidates: &Candidates,
+    samples: &[Sample],
+    slots: usize,
+    sim: &dyn Similarity,
+) -> Discovery {
+    let d = slots;
+    let mut basis = RowBasis::default();
+    let mut remaining: Vec<usize> = (0..candidates.list.len())
+        .filter(|&i| !implied(&basis, &rows_of(candidates, i), d))
+        .collect();
+    let mut current: Vec<DVector<f64>> = samples
+        .iter()
+        .map(|s| DVector::from_column_slice(&s.values))
+        .collect();
+    let mut out = Discovery {
+        order: Vec::new(),
+        scores: Vec::new(),
+        curve: vec![0.0],
+        implied: Vec::new(),
+    };
+    while !remaining.is_empty() && !samples.is_empty() {
+        let projectors: Vec<Projector> = current
+            .iter()
+            .zip(samples)
+            .map(|(x, s)| Projector::new(&faces.metric(x.as_slice(), &s.optional), &basis))
+            .collect();
+        let mut best: Option<(f64, usize, Vec<DVector<f64>>)> = None;
+        for &c in &remaining {
+            let rows = rows_of(candidates, c);
+            let mut score = 1.0;
+            let mut projected = Vec::with_capacity(samples.len());
+            for ((x, p), s) in current.iter().zip(&projectors).zip(samples) {
+                let y = p.project(x, &rows);
+                score *= sim.similarity(y.as_slice(), x.as_slice(), &s.optional);
+                projected.push(y);
+            }
+            if best.as_ref().is_none_or(|(b, ..)| score > *b) {
+                best = Some((score, c, projected));
+            }
+        }
+        let Some((score, c, projected)) = best else {
+            break;
+        };
+        for r in rows_of(candidates, c) {
+            basis.add(&dense(r, d));
+        }
+        current = projected;
+        let mean = current
+            .iter()
+            .zip(samples)
+            .map(|(x, s)| sim.similarity(x.as_slice(), &s.values, &s.optional))
+            .sum::<f64>()
+            / samples.len() as f64;
+        out.order.push(c);
+        out.scores.push(score);
+        out.curve.push(1.0 - mean);
+        let (gone, keep): (Vec<usize>, Vec<usize>) = remaining
+            .into_iter()
+            .filter(|&i| i != c)
+            .partition(|&i| implied(&basis, &rows_of(candidates, i), d));
+        remaining = keep;
+        out.implied.push(gone);
+    }
+    out
+}

@@ -1,0 +1,271 @@
+//! Re-parameterization: the chosen constraints solved for a few free variables.
+//!
+//! Gauss–Jordan elimination on the chosen rows plus anchor rows, with the columns ordered so
+//! the meaningful slots stay free (named variables, then sizes, larger parts first; positions
+//! are eliminated first). Pivot columns become dependent slots, each an affine expression of
+//! the free ones. The coefficients are small rationals (±1, ±½, …); elimination runs in `f64`
+//! with partial pivoting and the results are read back as exact fractions (`Frac`).
+
+use super::linalg::rank;
+use super::project::{RowBasis, dense};
+use crate::ir::feature::world_intervals;
+use crate::ir::{Affine, Model, SlotId};
+
+/// A small exact fraction `num / den`, `den > 0`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Frac {
+    pub num: i64,
+    pub den: i64,
+}
+
+impl Frac {
+    /// The fraction with denominator at most 1000 within 1e-9 of `x`, if there is one.
+    pub fn near(x: f64) -> Option<Frac> {
+        if !x.is_finite() || x.abs() > 1e12 {
+            return None;
+        }
+        // Continued fractions: the best approximations with small denominators.
+        let (mut h0, mut h1, mut k0, mut k1) = (0i64, 1i64, 1i64, 0i64);
+        let mut v = x;
+        for _ in 0..20 {
+            let a = v.floor();
+            let (h2, k2) = (a as i64 * h1 + h0, a as i64 * k1 + k0);
+            if k2 > 1000 {
+                break;
+            }
+            if ((h2 as f64) / (k2 as f64) - x).abs() <= 1e-9 * x.abs().max(1.0) {
+                return Some(Frac { num: h2, den: k2 });
+            }
+            (h0, h1, k0, k1) = (h1, h2, k1, k2);
+            let f = v - a;
+            if f.abs() < 1e-15 {
+                break;
+            }
+            v = 1.0 / f;
+        }
+        None
+    }
+
+    pub fn value(&self) -> f64 {
+        self.num as f64 / self.den as f64
+    }
+}
+
+/// A slot's value as `constant + Σ coeff · free[i]`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Expression {
+    pub constant: f64,
+    /// (index into the free variables, coefficient), by index.
+    pub terms: Vec<(usize, f64)>,
+}
+
+impl Expression {
+    pub fn eval(&self, free: &[f64]) -> f64 {
+        self.terms
+            .iter()
+            .fold(self.constant, |acc, &(i, a)| acc + a * free[i])
+    }
+}
+
+/// The solved system: which slots are free and how every slot follows from them.
+#[derive(Debug, Clone)]
+pub struct Solution {
+    /// Free slots, in the order they will be shown.
+    pub free: Vec<SlotId>,
+    /// For every slot (by id), its expression in the free variables.
+    pub exprs: Vec<Expression>,
+    /// How many anchor rows were added (rigid moves removed).
+    pub anchors: usize,
+}
+
+impl Solution {
+    /// Slot values for the free variables' values.
+    pub fn slot_values(&self, free: &[f64]) -> Vec<f64> {
+        self.exprs.iter().map(|e| e.eval(free)).collect()
+    }
+}
+
+/// Rows that pin the model in place: its centre in x and y and its floor in z.
+pub fn anchor_rows(model: &Model) -> Vec<Affine> {
+    let values = model.slot_values();
+    let mut lo: [Option<(f64, Affine)>; 3] = Default::default();
+    let mut hi: [Option<(f64, Affine)>; 3] = Default::default();
+    for p in model.parts.iter().filter(|p| p.misaligned.is_none()) {
+        let Some(iv) = world_intervals(p) else {
+            continue;
+        };
+        for a in 0..3 {
+            if let (Some(l), Some(h)) = (iv[a].0.affine(), iv[a].1.affine()) {
+                let (lv, hv) = (l.eval(&values), h.eval(&values));
+                if lo[a].as_ref().is_none_or(|(v, _)| lv < *v) {
+                    lo[a] = Some((lv, l.clone()));
+                }
+                if hi[a].as_ref().is_none_or(|(v, _)| hv > *v) {
+                    hi[a] = Some((hv, h.clone()));
+                }
+            }
+        }
+    }
+    let mut rows = Vec::new();
+    for a in 0..2 {
+        if let (Some((lv, l)), Some((hv, h))) = (&lo[a], &hi[a]) {
+            let centre = l.add(h).scale(0.5);
+            rows.push(centre.sub(&Affine::constant((lv + hv) / 2.0)));
+        }
+    }
+    if let Some((lv, l)) = &lo[2] {
+        rows.push(l.sub(&Affine::constant(*lv)));
+    }
+    rows
+}
+
+/// Column order: least wanted as a free variable first.
+fn column_order(model: &Model) -> Vec<usize> {
+    let mut volume = vec![0.0f64; model.slots.len()];
+    for p in &model.parts {
+        let (lo, hi) = p.world_bounds();
+        let v = (0..3).map(|a| (hi[a] - lo[a]).abs()).product::<f64>();
+        let nums = p.world.m.iter().flatten().chain(match &p.primitive {
+            crate::ir::Primitive::Cube { size, .. } => size.iter().collect::<Vec<_>>(),
+            crate::ir::Primitive::Cylinder { h, r1, r2, .. } => vec![h, r1, r2],
+            crate::ir::Primitive::Sphere { r } => vec![r],
+        });
+        for n in nums {
+            for s in n.deps() {
+                volume[s as usize] = volume[s as usize].max(v);
+            }
+        }
+    }
+    let mut order: Vec<usize> = (0..model.slots.len()).collect();
+    let rank_of = |s: usize| {
+        let slot = &model.slots[s];
+        let kind = if slot.variable.is_some() {
+            2
+        } else if slot.position {
+            0
+        } else {
+            1
+        };
+        (kind, volume[s])
+    };
+    order.sort_by(|&a, &b| {
+        let (ka, va) = rank_of(a);
+        let (kb, vb) = rank_of(b);
+        ka.cmp(&kb).then(va.total_cmp(&vb)).then(b.cmp(&a))
+    });
+    order
+}
+
+/// Solves `rows` (affine, each `= 0`) plus the anchors for the free slots.
+pub fn solve(model: &Model, rows: &[Affine]) -> Solution {
+    let d = model.slots.len();
+    let mut basis = RowBasis::default();
+    let mut system: Vec<Affine> = Vec::new();
+    for r in rows {
+        if basis.add(&dense(r, d)) {
+            system.push(r.clone());
+        }
+    }
+    let mut anchors = 0;
+    for r in anchor_rows(model) {
+        if basis.add(&dense(&r, d)) {
+            system.push(r);
+            anchors += 1;
+        }
+    }
+    let order = column_order(model);
+    // Augmented matrix in column order: [A | constant].
+    let m = system.len();
+    let mut a: Vec<Vec<f64>> = system
+        .iter()
+        .map(|r| {
+            let mut row: Vec<f64> = order.iter().map(|&s| r.coeff(s as SlotId)).collect();
+            row.push(r.constant);
+            row
+        })
+        .collect();
+    let mut pivots: Vec<usize> = Vec::new();
+    let mut row = 0;
+    for col in 0..d {
+        if row == m {
+            break;
+        }
+        let Some(p) = (row..m).max_by(|&i, &j| a[i][col].abs().total_cmp(&a[j][col].abs())) else {
+            break;
+        };
+        if a[p][col].abs() < 1e-9 {
+            continue;
+        }
+        a.swap(row, p);
+        let pv = a[row][col];
+        for v in a[row].iter_mut() {
+            *v /= pv;
+        }
+        let pivot_row = a[row].clone();
+        for (i, r) in a.iter_mut().enumerate() {
+            if i != row && r[col] != 0.0 {
+                let f = r[col];
+                for (x, y) in r.iter_mut().zip(&pivot_row) {
+                    *x -= f * y;
+                }
+            }
+        }
+        pivots.push(col);
+        row += 1;
+    }
+    let snap = |x: f64| Frac::near(x).map_or(x, |f| f.value());
+    let is_pivot: Vec<bool> = (0..d).map(|c| pivots.contains(&c)).collect();
+    let free_cols: Vec<usize> = (0..d).filter(|&c| !is_pivot[c]).collect();
+    let mut free: Vec<SlotId> = free_cols.iter().map(|&c| order[c] as SlotId).collect();
+    free.sort_unstable();
+    let free_index = |slot: usize| free.iter().position(|&f| f as usize == slot);
+    let mut exprs = vec![
+        Expression {
+            constant: 0.0,
+            terms: Vec::new()
+        };
+        d
+    ];
+    for &f in &free {
+        exprs[f as usize] = Expression {
+            constant: 0.0,
+            terms: vec![(free_index(f as usize).unwrap_or(0), 1.0)],
+        };
+    }
+    for (r, &pc) in pivots.iter().enumerate() {
+        let slot = order[pc];
+        let mut terms: Vec<(usize, f64)> = free_cols
+            .iter()
+            .filter(|&&c| a[r][c].abs() > 1e-12)
+            .filter_map(|&c| Some((free_index(order[c])?, snap(-a[r][c]))))
+            .collect();
+        terms.sort_by_key(|t| t.0);
+        exprs[slot] = Expression {
+            constant: -a[r][d],
+            terms,
+        };
+    }
+    debug_assert_eq!(
+        rank(&system.iter().collect::<Vec<_>>(), d),
+        pivots.len(),
+        "elimination and SVD disagree on the rank"
+    );
+    Solution {
+        free,
+        exprs,
+        anchors,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Frac;
+
+    #[test]
+    fn fractions_are_recovered() {
+        assert_eq!(Frac::near(0.5), Some(Frac { num: 1, den: 2 }));
+        assert_eq!(Frac::near(-1.5), Some(Frac { num: -3, den: 2 }));
+        assert_eq!(Frac::near(1.0 / 3.0 + 1e-15), Some(Frac { num: 1, den: 3 }));
+        assert_eq!(Frac::near(std::f64::consts::PI), None);
+    }
+}
