@@ -12,9 +12,12 @@ use super::project::{Faces, Projector, RowBasis, dense};
 use crate::ir::Affine;
 use nalgebra::DVector;
 
-/// How alike two settings of the model are (1 = identical), leaving out the `skip` parts.
+/// How alike settings of the model are (1 = identical): IoU, or an image-based measure.
 pub trait Similarity: Sync {
+    /// Between the model at slot values `a` and at `b`, both without the `skip` parts.
     fn similarity(&self, a: &[f64], b: &[f64], skip: &[usize]) -> f64;
+    /// Between the model at `x` without `part` and the model at `x`.
+    fn removal(&self, x: &[f64], part: usize) -> f64;
 }
 
 /// One variation as discovery sees it: its slot values and the parts it does without.

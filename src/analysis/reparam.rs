@@ -85,8 +85,15 @@ impl Solution {
     }
 }
 
-/// Rows that pin the model in place: its centre in x and y and its floor in z.
+/// Rows that pin the model in place: its centre in x and y and its floor in z, at the
+/// input. The faces used are the input's extremes.
 pub fn anchor_rows(model: &Model) -> Vec<Affine> {
+    anchor_rows_at(model, &model.slot_values())
+}
+
+/// The anchor rows with their constants taken at `at` instead of the input: the same
+/// faces, held where `at` has them (a variation keeps its own place while projected).
+pub fn anchor_rows_at(model: &Model, at: &[f64]) -> Vec<Affine> {
     let values = model.slot_values();
     let mut lo: [Option<(f64, Affine)>; 3] = Default::default();
     let mut hi: [Option<(f64, Affine)>; 3] = Default::default();
@@ -108,13 +115,13 @@ pub fn anchor_rows(model: &Model) -> Vec<Affine> {
     }
     let mut rows = Vec::new();
     for a in 0..2 {
-        if let (Some((lv, l)), Some((hv, h))) = (&lo[a], &hi[a]) {
+        if let (Some((_, l)), Some((_, h))) = (&lo[a], &hi[a]) {
             let centre = l.add(h).scale(0.5);
-            rows.push(centre.sub(&Affine::constant((lv + hv) / 2.0)));
+            rows.push(centre.sub(&Affine::constant(centre.eval(at))));
         }
     }
-    if let Some((lv, l)) = &lo[2] {
-        rows.push(l.sub(&Affine::constant(*lv)));
+    if let Some((_, l)) = &lo[2] {
+        rows.push(l.sub(&Affine::constant(l.eval(at))));
     }
     rows
 }

@@ -90,6 +90,18 @@ fn tokens(text: &str) -> Vec<(Tok, usize, usize)> {
     out
 }
 
+/// Whether `toks[k]` is a unary minus directly in front of a number.
+fn negated_number(toks: &[(Tok, usize, usize)], k: usize) -> bool {
+    let is_minus = matches!(toks.get(k), Some((Tok::Punct(p), ..)) if p == "-");
+    let then_number = matches!(toks.get(k + 1), Some((Tok::Num(_), ..)));
+    let unary = match k.checked_sub(1).and_then(|p| toks.get(p)) {
+        None => true,
+        Some((Tok::Punct(p), ..)) => !matches!(p.as_str(), ")" | "]" | "}"),
+        Some(_) => false,
+    };
+    is_minus && then_number && unary
+}
+
 fn describe(t: Option<&(Tok, usize, usize)>) -> String {
     match t {
         None => "the end of the file".into(),
@@ -120,8 +132,28 @@ pub fn load_variation(
     let ours = tokens(sources.text(base));
     let theirs = tokens(sources.text(file));
     let mut at_number: HashMap<usize, f64> = HashMap::new();
-    for k in 0..ours.len().max(theirs.len()) {
-        let (a, b) = (ours.get(k), theirs.get(k));
+    // Offsets in the variant of each model number, for pointing at them.
+    let mut variant_offset: HashMap<usize, usize> = HashMap::new();
+    let (mut i, mut j) = (0, 0);
+    while i < ours.len() || j < theirs.len() {
+        let (a, b) = (ours.get(i), theirs.get(j));
+        // A sign may appear or disappear in front of a number: `0` → `-22.5`.
+        if let (Some((Tok::Num(_), s, _)), true) = (a, negated_number(&theirs, j)) {
+            if let Some((Tok::Num(v), vs, _)) = theirs.get(j + 1) {
+                at_number.insert(*s, -v);
+                variant_offset.insert(*s, *vs);
+                (i, j) = (i + 1, j + 2);
+                continue;
+            }
+        }
+        if let (true, Some((Tok::Num(v), vs, _))) = (negated_number(&ours, i), b) {
+            if let Some((Tok::Num(_), s, _)) = ours.get(i + 1) {
+                at_number.insert(*s, -v);
+                variant_offset.insert(*s, *vs);
+                (i, j) = (i + 2, j + 1);
+                continue;
+            }
+        }
         let same = match (a, b) {
             (Some((Tok::Num(_), ..)), Some((Tok::Num(_), ..))) => true,
             (Some((x, ..)), Some((y, ..))) => x == y,
@@ -134,15 +166,22 @@ pub fn load_variation(
             let here = span_of(b, file, sources.text(file).len());
             let there = span_of(a, base, sources.text(base).len());
             return Err(Box::new(
-                Diagnostic::error("E0601", format!("variation `{name}` is not the same program with other numbers"))
-                    .at(here, format!("the variation has {} here", describe(b)))
-                    .with_secondary(there, format!("the model has {} here", describe(a)))
-                    .with_note("a variation may change numbers only; statements, names and structure must match the model"),
+                Diagnostic::error(
+                    "E0601",
+                    format!("variation `{name}` is not the same program with other numbers"),
+                )
+                .at(here, format!("the variation has {} here", describe(b)))
+                .with_secondary(there, format!("the model has {} here", describe(a)))
+                .with_note(
+                    "a variation may change numbers only; statements, names and structure must match the model",
+                ),
             ));
         }
-        if let (Some((Tok::Num(_), s, _)), Some((Tok::Num(v), ..))) = (a, b) {
+        if let (Some((Tok::Num(_), s, _)), Some((Tok::Num(v), vs, _))) = (a, b) {
             at_number.insert(*s, *v);
+            variant_offset.insert(*s, *vs);
         }
+        (i, j) = (i + 1, j + 1);
     }
     for f in &model.frozen {
         if f.span.file != base {
@@ -156,11 +195,10 @@ pub fn load_variation(
                         "it multiplies another parameter, so it is held constant".into()
                     }
                 };
-                let offset = theirs
-                    .iter()
-                    .zip(&ours)
-                    .find(|(_, o)| o.1 == f.span.start as usize)
-                    .map_or(0, |(t, _)| t.1);
+                let offset = variant_offset
+                    .get(&(f.span.start as usize))
+                    .copied()
+                    .unwrap_or(0);
                 return Err(Box::new(
                     Diagnostic::error(
                         "E0602",

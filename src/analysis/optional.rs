@@ -1,0 +1,78 @@
+//! Optional parts: parts a variation can do without.
+//!
+//! A part is optional in a variation when removing it leaves the variation's shape unchanged
+//! within a threshold (it is hidden inside others, or shrunk to nothing). Parts optional in
+//! exactly the same set of variations form one toggle (a Customizer checkbox, on by default).
+
+use super::discover::Similarity;
+
+/// Similarity lost when a part is removed, below which it is optional.
+pub const OPTIONAL_THRESHOLD: f64 = 1e-3;
+
+/// A group of parts switched together, and the variations that do without them.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Toggle {
+    pub parts: Vec<usize>,
+    pub off_in: Vec<usize>,
+}
+
+/// For each variation, the parts it does without.
+pub fn optional_parts(
+    parts: usize,
+    variations: &[Vec<f64>],
+    sim: &dyn Similarity,
+) -> Vec<Vec<usize>> {
+    variations
+        .iter()
+        .map(|v| {
+            (0..parts)
+                .filter(|&p| 1.0 - sim.removal(v, p) < OPTIONAL_THRESHOLD)
+                .collect()
+        })
+        .collect()
+}
+
+/// Groups parts by the exact set of variations they are optional in.
+pub fn toggles(parts: usize, optional: &[Vec<usize>]) -> Vec<Toggle> {
+    let mut groups: Vec<Toggle> = Vec::new();
+    for p in 0..parts {
+        let off_in: Vec<usize> = (0..optional.len())
+            .filter(|&j| optional[j].contains(&p))
+            .collect();
+        if off_in.is_empty() {
+            continue;
+        }
+        match groups.iter_mut().find(|g| g.off_in == off_in) {
+            Some(g) => g.parts.push(p),
+            None => groups.push(Toggle {
+                parts: vec![p],
+                off_in,
+            }),
+        }
+    }
+    groups
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn parts_optional_in_the_same_variations_share_a_toggle() {
+        let optional = vec![vec![1, 2], vec![2], vec![1, 2]];
+        let t = toggles(4, &optional);
+        assert_eq!(
+            t,
+            vec![
+                Toggle {
+                    parts: vec![1],
+                    off_in: vec![0, 2]
+                },
+                Toggle {
+                    parts: vec![2],
+                    off_in: vec![0, 1, 2]
+                },
+            ]
+        );
+    }
+}
