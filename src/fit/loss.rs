@@ -1,0 +1,281 @@
+//! The paper's image loss and its per-pixel derivatives.
+//!
+//! `L(x) = Σ_views ‖sharpen(R(x)) − sharpen(I)‖² + λ‖x − x₀‖²` with
+//! `sharpen(I) = I − 0.2·blur(I)`. Here `R` and `I` have two channels that can be compared
+//! between a render and a picture of anything on a plain background: coverage (the
+//! foreground mask) and premultiplied shade (grey level times coverage). Each view's squared
+//! norm is a mean over its pixels, so image size does not change the step size; the shade
+//! channel has weight [`LossSpec::shading`].
+//!
+//! `sharpen` is linear and symmetric (a Gaussian blur with zero padding), so the derivative
+//! of `‖sharpen(r)‖²` with respect to `r` is `2·sharpen(sharpen(r))`.
+
+use crate::render::image::Rgb;
+use crate::render::soft::SoftImage;
+
+/// How images are compared.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LossSpec {
+    /// The `0.2` in `I − 0.2·blur(I)`.
+    pub sharpen: f64,
+    /// Standard deviation of the blur, pixels.
+    pub blur: f64,
+    /// Weight of the shade channel (the coverage channel has weight 1).
+    pub shading: f64,
+}
+
+impl Default for LossSpec {
+    fn default() -> Self {
+        LossSpec {
+            sharpen: 0.2,
+            blur: 1.0,
+            shading: 0.5,
+        }
+    }
+}
+
+/// A target picture as channels: foreground coverage and premultiplied grey.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Target {
+    pub width: u32,
+    pub height: u32,
+    pub m: Vec<f32>,
+    /// `m · grey`.
+    pub s: Vec<f32>,
+    /// Grey level (luminance) everywhere.
+    pub grey: Vec<f32>,
+    /// The background colour found at the border.
+    pub background: [f32; 3],
+}
+
+/// Colour distance below which a pixel is background, and above which it is foreground,
+/// for a noiseless background; a noisy border raises both.
+const FG_LO: f32 = 0.012;
+const FG_HI: f32 = 0.03;
+
+impl Target {
+    /// Channels of a picture on a plain background: the background colour is the most
+    /// common colour along the border; a pixel's coverage rises from 0 to 1 as its colour
+    /// moves away from it.
+    pub fn from_rgb(img: &Rgb) -> Target {
+        let background = border_colour(img);
+        let grey = img.luminance();
+        let dist = |c: &[f32; 3]| {
+            (0..3)
+                .map(|k| (c[k] - background[k]).abs())
+                .fold(0.0f32, f32::max)
+        };
+        // How far border pixels stray from the background (its noise).
+        let mut border: Vec<f32> = border_pixels(img).iter().map(dist).collect();
+        border.sort_by(f32::total_cmp);
+        let noise = border.get(border.len() * 9 / 10).copied().unwrap_or(0.0);
+        let (lo, hi) = (FG_LO.max(3.0 * noise), FG_HI.max(6.0 * noise));
+        let m: Vec<f32> = img
+            .data
+            .iter()
+            .map(|c| smoothstep(lo, hi, dist(c)))
+            .collect();
+        let s = m.iter().zip(&grey).map(|(m, g)| m * g).collect();
+        Target {
+            width: img.width,
+            height: img.height,
+            m,
+            s,
+            grey,
+            background,
+        }
+    }
+
+    /// Channels straight from a render (for tests and synthetic targets).
+    pub fn from_soft(img: &SoftImage) -> Target {
+        let grey = img
+            .m
+            .iter()
+            .zip(&img.s)
+            .map(|(&m, &s)| if m > 1e-6 { s / m } else { 0.0 })
+            .collect();
+        Target {
+            width: img.width,
+            height: img.height,
+            m: img.m.clone(),
+            s: img.s.clone(),
+            grey,
+            background: [1.0; 3],
+        }
+    }
+
+    /// Number of foreground pixels (coverage above one half).
+    pub fn foreground(&self) -> usize {
+        self.m.iter().filter(|&&m| m > 0.5).count()
+    }
+}
+
+fn smoothstep(a: f32, b: f32, x: f32) -> f32 {
+    let t = ((x - a) / (b - a)).clamp(0.0, 1.0);
+    t * t * (3.0 - 2.0 * t)
+}
+
+fn border_pixels(img: &Rgb) -> Vec<[f32; 3]> {
+    let (w, h) = (img.width, img.height);
+    let mut border = Vec::new();
+    for x in 0..w {
+        border.push(img.get(x, 0));
+        border.push(img.get(x, h - 1));
+    }
+    for y in 0..h {
+        border.push(img.get(0, y));
+        border.push(img.get(w - 1, y));
+    }
+    border
+}
+
+/// The most common colour of the border pixels (quantised to 1/32), averaged.
+fn border_colour(img: &Rgb) -> [f32; 3] {
+    let border = border_pixels(img);
+    let key = |c: &[f32; 3]| c.map(|v| (v * 32.0).round() as i32);
+    let mut counts: std::collections::HashMap<[i32; 3], (usize, [f64; 3])> = Default::default();
+    for c in &border {
+        let e = counts.entry(key(c)).or_insert((0, [0.0; 3]));
+        e.0 += 1;
+        for k in 0..3 {
+            e.1[k] += c[k] as f64;
+        }
+    }
+    let best = counts
+        .into_iter()
+        .max_by(|a, b| a.1.0.cmp(&b.1.0).then(b.0.cmp(&a.0)))
+        .map(|(_, v)| v);
+    match best {
+        Some((n, sum)) => sum.map(|v| (v / n as f64) as f32),
+        None => [1.0; 3],
+    }
+}
+
+/// A normalised Gaussian kernel of standard deviation `sigma` (radius `⌈3σ⌉`).
+pub fn gaussian_kernel(sigma: f64) -> Vec<f32> {
+    if sigma <= 0.0 {
+        return vec![1.0];
+    }
+    let r = (3.0 * sigma).ceil() as i32;
+    let mut k: Vec<f64> = (-r..=r)
+        .map(|i| (-(i * i) as f64 / (2.0 * sigma * sigma)).exp())
+        .collect();
+    let sum: f64 = k.iter().sum();
+    k.iter_mut().for_each(|v| *v /= sum);
+    k.into_iter().map(|v| v as f32).collect()
+}
+
+/// `img − amount·blur(img)` with a separable Gaussian and zero padding.
+pub fn sharpen(img: &[f32], width: u32, height: u32, spec: &LossSpec) -> Vec<f32> {
+    if spec.sharpen == 0.0 {
+        return img.to_vec();
+    }
+    let kernel = gaussian_kernel(spec.blur);
+    let blurred = blur(img, width as usize, height as usize, &kernel);
+    let a = spec.sharpen as f32;
+    img.iter().zip(&blurred).map(|(v, b)| v - a * b).collect()
+}
+
+/// Separable convolution with zero padding.
+pub fn blur(img: &[f32], w: usize, h: usize, kernel: &[f32]) -> Vec<f32> {
+    let r = (kernel.len() / 2) as isize;
+    let mut tmp = vec![0.0f32; w * h];
+    for y in 0..h {
+        let row = &img[y * w..(y + 1) * w];
+        for x in 0..w {
+            let mut acc = 0.0;
+            for (k, &kv) in kernel.iter().enumerate() {
+                let xx = x as isize + k as isize - r;
+                if xx >= 0 && (xx as usize) < w {
+                    acc += kv * row[xx as usize];
+                }
+            }
+            tmp[y * w + x] = acc;
+        }
+    }
+    let mut out = vec![0.0f32; w * h];
+    for y in 0..h {
+        for (k, &kv) in kernel.iter().enumerate() {
+            let yy = y as isize + k as isize - r;
+            if yy < 0 || yy as usize >= h {
+                continue;
+            }
+            let src = &tmp[yy as usize * w..(yy as usize + 1) * w];
+            let dst = &mut out[y * w..(y + 1) * w];
+            for x in 0..w {
+                dst[x] += kv * src[x];
+            }
+        }
+    }
+    out
+}
+
+/// One view's loss and its derivatives with respect to the rendered channels.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ViewLoss {
+    pub loss: f64,
+    pub gm: Vec<f32>,
+    pub gs: Vec<f32>,
+}
+
+/// `mean(sharpen(M − M_T)²) + w·mean(sharpen(S − S_T)²)` and its derivatives.
+pub fn view_loss(render: &SoftImage, target: &Target, spec: &LossSpec, grad: bool) -> ViewLoss {
+    let (w, h) = (render.width, render.height);
+    let n = (w * h) as f64;
+    let rm: Vec<f32> = render.m.iter().zip(&target.m).map(|(a, b)| a - b).collect();
+    let rs: Vec<f32> = render.s.iter().zip(&target.s).map(|(a, b)| a - b).collect();
+    let qm = sharpen(&rm, w, h, spec);
+    let qs = sharpen(&rs, w, h, spec);
+    let sm: f64 = qm.iter().map(|&v| (v as f64) * (v as f64)).sum();
+    let ss: f64 = qs.iter().map(|&v| (v as f64) * (v as f64)).sum();
+    let loss = sm / n + spec.shading * ss / n;
+    if !grad {
+        return ViewLoss {
+            loss,
+            gm: Vec::new(),
+            gs: Vec::new(),
+        };
+    }
+    let km = (2.0 / n) as f32;
+    let ks = (2.0 * spec.shading / n) as f32;
+    let gm = sharpen(&qm, w, h, spec)
+        .into_iter()
+        .map(|v| v * km)
+        .collect();
+    let gs = sharpen(&qs, w, h, spec)
+        .into_iter()
+        .map(|v| v * ks)
+        .collect();
+    ViewLoss { loss, gm, gs }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sharpen_is_symmetric() {
+        let (w, h) = (7u32, 5u32);
+        let spec = LossSpec::default();
+        let a: Vec<f32> = (0..35).map(|i| ((i * 37) % 11) as f32 / 11.0).collect();
+        let b: Vec<f32> = (0..35).map(|i| ((i * 13) % 7) as f32 / 7.0).collect();
+        let sa = sharpen(&a, w, h, &spec);
+        let sb = sharpen(&b, w, h, &spec);
+        let l: f32 = sa.iter().zip(&b).map(|(x, y)| x * y).sum();
+        let r: f32 = a.iter().zip(&sb).map(|(x, y)| x * y).sum();
+        assert!((l - r).abs() < 1e-4);
+    }
+
+    #[test]
+    fn background_is_the_border_colour() {
+        let mut img = Rgb::new(10, 10, [1.0, 1.0, 0.9]);
+        for y in 3..7 {
+            for x in 3..7 {
+                img.data[y * 10 + x] = [0.9, 0.8, 0.2];
+            }
+        }
+        let t = Target::from_rgb(&img);
+        assert_eq!(t.foreground(), 16);
+        assert!((t.background[2] - 0.9).abs() < 1e-6);
+    }
+}

@@ -1,0 +1,241 @@
+//! Images: RGB buffers, PNG reading and writing, grids, and turning soft channels into
+//! pictures.
+
+use super::soft::SoftImage;
+use std::path::Path;
+
+/// An RGB image with channels in `0..=1`, rows top to bottom.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Rgb {
+    pub width: u32,
+    pub height: u32,
+    pub data: Vec<[f32; 3]>,
+}
+
+/// Background of rendered pictures.
+pub const BACKGROUND: [f32; 3] = [1.0, 1.0, 1.0];
+/// Base colour of rendered surfaces (multiplied by the shade).
+pub const SURFACE: [f32; 3] = [0.98, 0.82, 0.25];
+
+impl Rgb {
+    pub fn new(width: u32, height: u32, fill: [f32; 3]) -> Rgb {
+        Rgb {
+            width,
+            height,
+            data: vec![fill; (width * height) as usize],
+        }
+    }
+
+    pub fn get(&self, x: u32, y: u32) -> [f32; 3] {
+        self.data[(y * self.width + x) as usize]
+    }
+
+    /// Luminance (Rec. 709 weights on the stored values).
+    pub fn luminance(&self) -> Vec<f32> {
+        self.data
+            .iter()
+            .map(|c| 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2])
+            .collect()
+    }
+
+    /// Encodes as an 8-bit RGB PNG.
+    pub fn encode_png(&self) -> Vec<u8> {
+        let mut out = Vec::new();
+        {
+            let mut enc = png::Encoder::new(&mut out, self.width, self.height);
+            enc.set_color(png::ColorType::Rgb);
+            enc.set_depth(png::BitDepth::Eight);
+            let bytes: Vec<u8> = self
+                .data
+                .iter()
+                .flat_map(|c| c.map(|v| (v.clamp(0.0, 1.0) * 255.0).round() as u8))
+                .collect();
+            // Writing to memory cannot fail for a well-formed header.
+            if let Ok(mut w) = enc.write_header() {
+                let _ = w.write_image_data(&bytes);
+            }
+        }
+        out
+    }
+
+    /// Decodes a PNG (any bit depth and colour type; alpha is composited onto white).
+    pub fn decode_png(bytes: &[u8]) -> Result<Rgb, String> {
+        let mut dec = png::Decoder::new(std::io::Cursor::new(bytes));
+        dec.set_transformations(png::Transformations::normalize_to_color8());
+        let mut reader = dec.read_info().map_err(|e| describe_png_error(&e))?;
+        let size = reader
+            .output_buffer_size()
+            .ok_or_else(|| "the image is too large".to_string())?;
+        let mut buf = vec![0u8; size];
+        let info = reader
+            .next_frame(&mut buf)
+            .map_err(|e| describe_png_error(&e))?;
+        let (w, h) = (info.width, info.height);
+        if w == 0 || h == 0 {
+            return Err("the image is empty".into());
+        }
+        let ch = match info.color_type {
+            png::ColorType::Grayscale => 1,
+            png::ColorType::GrayscaleAlpha => 2,
+            png::ColorType::Rgb => 3,
+            png::ColorType::Rgba => 4,
+            png::ColorType::Indexed => return Err("unsupported palette image".into()),
+        };
+        let mut data = Vec::with_capacity((w * h) as usize);
+        for y in 0..h as usize {
+            let row = &buf[y * info.line_size..];
+            for x in 0..w as usize {
+                let px = &row[x * ch..x * ch + ch];
+                let f = |v: u8| v as f32 / 255.0;
+                let (rgb, a) = match ch {
+                    1 => ([f(px[0]); 3], 1.0),
+                    2 => ([f(px[0]); 3], f(px[1])),
+                    3 => ([f(px[0]), f(px[1]), f(px[2])], 1.0),
+                    _ => ([f(px[0]), f(px[1]), f(px[2])], f(px[3])),
+                };
+                data.push(rgb.map(|c| c * a + (1.0 - a)));
+            }
+        }
+        Ok(Rgb {
+            width: w,
+            height: h,
+            data,
+        })
+    }
+
+    /// Reads a PNG file; the error says what is wrong (not the file name).
+    pub fn read_png(path: &Path) -> Result<Rgb, String> {
+        let bytes = std::fs::read(path).map_err(|e| format!("cannot read it: {e}"))?;
+        if bytes.is_empty() {
+            return Err("the file is empty".into());
+        }
+        if !bytes.starts_with(b"\x89PNG\r\n\x1a\n") {
+            return Err("not a PNG image".into());
+        }
+        Rgb::decode_png(&bytes)
+    }
+
+    /// Resamples to another size (box filter when shrinking, bilinear when growing).
+    pub fn resize(&self, width: u32, height: u32) -> Rgb {
+        if width == self.width && height == self.height {
+            return self.clone();
+        }
+        let mut out = Rgb::new(width, height, [0.0; 3]);
+        let sx = self.width as f64 / width as f64;
+        let sy = self.height as f64 / height as f64;
+        for y in 0..height {
+            for x in 0..width {
+                let x0 = x as f64 * sx;
+                let y0 = y as f64 * sy;
+                let x1 = x0 + sx;
+                let y1 = y0 + sy;
+                let mut acc = [0.0f64; 3];
+                let mut wsum = 0.0;
+                let (ix0, iy0) = (x0.floor() as u32, y0.floor() as u32);
+                let ix1 = (x1.ceil() as u32).min(self.width).max(ix0 + 1);
+                let iy1 = (y1.ceil() as u32).min(self.height).max(iy0 + 1);
+                for iy in iy0..iy1.min(self.height) {
+                    for ix in ix0..ix1.min(self.width) {
+                        let wx = (x1.min(ix as f64 + 1.0) - x0.max(ix as f64)).max(1e-6);
+                        let wy = (y1.min(iy as f64 + 1.0) - y0.max(iy as f64)).max(1e-6);
+                        let c = self.get(ix, iy);
+                        for k in 0..3 {
+                            acc[k] += wx * wy * c[k] as f64;
+                        }
+                        wsum += wx * wy;
+                    }
+                }
+                out.data[(y * width + x) as usize] = acc.map(|v| (v / wsum.max(1e-12)) as f32);
+            }
+        }
+        out
+    }
+}
+
+fn describe_png_error(e: &png::DecodingError) -> String {
+    match e {
+        png::DecodingError::IoError(io) if io.kind() == std::io::ErrorKind::UnexpectedEof => {
+            "the PNG is truncated".into()
+        }
+        png::DecodingError::IoError(io) => format!("cannot read it: {io}"),
+        png::DecodingError::Format(f) => {
+            let text = f.to_string();
+            if text.to_lowercase().contains("eof") || text.to_lowercase().contains("end of") {
+                format!("the PNG is truncated ({text})")
+            } else {
+                format!("not a valid PNG ({text})")
+            }
+        }
+        other => format!("cannot decode the PNG ({other})"),
+    }
+}
+
+/// A picture of soft channels: surfaces in [`SURFACE`] times their shade on [`BACKGROUND`].
+pub fn picture(soft: &SoftImage) -> Rgb {
+    let data = soft
+        .m
+        .iter()
+        .zip(&soft.s)
+        .map(|(&m, &s)| std::array::from_fn(|k| BACKGROUND[k] * (1.0 - m) + SURFACE[k] * s))
+        .collect();
+    Rgb {
+        width: soft.width,
+        height: soft.height,
+        data,
+    }
+}
+
+/// Images laid out left to right, top to bottom, `cols` per row, with a 2-pixel gap.
+pub fn grid(images: &[Rgb], cols: usize) -> Rgb {
+    let cols = cols.max(1).min(images.len().max(1));
+    let rows = images.len().div_ceil(cols);
+    let cw = images.iter().map(|i| i.width).max().unwrap_or(1);
+    let ch = images.iter().map(|i| i.height).max().unwrap_or(1);
+    let gap = 2;
+    let w = cols as u32 * cw + (cols as u32 - 1) * gap;
+    let h = rows as u32 * ch + (rows.max(1) as u32 - 1) * gap;
+    let mut out = Rgb::new(w.max(1), h.max(1), [0.6, 0.6, 0.6]);
+    for (k, img) in images.iter().enumerate() {
+        let ox = (k % cols) as u32 * (cw + gap);
+        let oy = (k / cols) as u32 * (ch + gap);
+        for y in 0..img.height {
+            for x in 0..img.width {
+                out.data[((oy + y) * out.width + ox + x) as usize] = img.get(x, y);
+            }
+        }
+    }
+    out
+}
+
+/// Writes bytes to `path` through a temporary file in the same folder, so a failure never
+/// leaves a partial file.
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    let dir = path
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let name = path
+        .file_name()
+        .map_or("out".into(), |n| n.to_string_lossy().into_owned());
+    let tmp = dir.join(format!(".{name}.{}.tmp", std::process::id()));
+    std::fs::write(&tmp, bytes)?;
+    std::fs::rename(&tmp, path).inspect_err(|_| {
+        let _ = std::fs::remove_file(&tmp);
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn png_round_trip() {
+        let mut img = Rgb::new(3, 2, [0.0; 3]);
+        img.data[4] = [1.0, 0.5, 0.0];
+        let bytes = img.encode_png();
+        let back = Rgb::decode_png(&bytes).unwrap();
+        assert_eq!(back.width, 3);
+        assert!((back.data[4][1] - 128.0 / 255.0).abs() < 1e-6);
+        assert!(Rgb::decode_png(&bytes[..bytes.len() / 2]).is_err());
+    }
+}
