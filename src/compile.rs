@@ -19,7 +19,7 @@ use crate::front::ast::{ExprKind, StmtKind};
 use crate::front::load::Loaded;
 use crate::front::source::{SourceMap, Span};
 use crate::front::walk::{Visitor, visit_stmts};
-use crate::ir::{Affine, CsgNode, Model};
+use crate::ir::{Affine, CsgNode, Model, Part};
 use crate::variation::Variation;
 use serde::Serialize;
 use std::collections::{BTreeSet, HashMap, HashSet};
@@ -62,25 +62,55 @@ pub fn csg_without(node: &CsgNode, skip: &[usize]) -> Option<CsgNode> {
     }
 }
 
+/// A setting of the model made into geometry once, with its volume.
+pub struct VolumeReference {
+    parts: Vec<Part>,
+    csg: CsgNode,
+    volume: f64,
+    skip: Vec<usize>,
+}
+
 impl VolumeSimilarity<'_> {
-    fn iou(&self, a: &[f64], a_skip: &[usize], b: &[f64], b_skip: &[usize]) -> f64 {
-        let (Some(pa), Some(pb)) = (self.model.parts_at(a), self.model.parts_at(b)) else {
-            return 0.0;
-        };
-        let empty = CsgNode::Union(Vec::new());
-        let ca = csg_without(&self.model.csg, a_skip).unwrap_or_else(|| empty.clone());
-        let cb = csg_without(&self.model.csg, b_skip).unwrap_or(empty);
-        crate::geom::iou((&pa, &ca), (&pb, &cb))
+    fn solid(&self, x: &[f64], skip: &[usize]) -> (Vec<Part>, CsgNode) {
+        let parts = self.model.parts_at(x).unwrap_or_default();
+        let csg = csg_without(&self.model.csg, skip).unwrap_or(CsgNode::Union(Vec::new()));
+        (parts, csg)
     }
 }
 
 impl Similarity for VolumeSimilarity<'_> {
-    fn similarity(&self, a: &[f64], b: &[f64], skip: &[usize]) -> f64 {
-        self.iou(a, skip, b, skip)
+    type Reference = VolumeReference;
+
+    fn reference(&self, b: &[f64], skip: &[usize]) -> VolumeReference {
+        let (parts, csg) = self.solid(b, skip);
+        let volume = crate::geom::volume(&parts, &csg);
+        VolumeReference {
+            parts,
+            csg,
+            volume,
+            skip: skip.to_vec(),
+        }
+    }
+
+    /// IoU, integrating only around the parts that differ from the reference.
+    fn similarity_to(&self, a: &[f64], r: &VolumeReference) -> f64 {
+        let (parts, csg) = self.solid(a, &r.skip);
+        if parts.len() != r.parts.len() {
+            return 0.0;
+        }
+        match crate::geom::changed_region(&parts, &r.parts) {
+            Some(region) if region.is_empty() => 1.0,
+            Some(region) => {
+                crate::geom::iou_local((&r.parts, &r.csg), (&parts, &csg), &region, r.volume)
+            }
+            None => crate::geom::iou((&parts, &csg), (&r.parts, &r.csg)),
+        }
     }
 
     fn removal(&self, x: &[f64], part: usize) -> f64 {
-        self.iou(x, &[part], x, &[])
+        let (pa, ca) = self.solid(x, &[part]);
+        let (pb, cb) = self.solid(x, &[]);
+        crate::geom::iou((&pa, &ca), (&pb, &cb))
     }
 }
 

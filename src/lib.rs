@@ -7,8 +7,12 @@
 
 pub mod analysis;
 pub mod back;
+pub mod compile;
+pub mod fit;
 pub mod front;
+pub mod geom;
 pub mod ir;
+pub mod render;
 pub mod variation;
 
 use front::diag::DResult;

@@ -11,11 +11,20 @@ use super::candidates::Candidates;
 use super::project::{Faces, Projector, RowBasis, dense};
 use crate::ir::Affine;
 use nalgebra::DVector;
+use std::collections::{HashMap, HashSet};
 
 /// How alike settings of the model are (1 = identical): IoU, or an image-based measure.
 pub trait Similarity: Sync {
+    /// What is worth computing once about a reference setting (e.g. its volume).
+    type Reference;
+    /// Prepares the model at `b` without the `skip` parts as a reference.
+    fn reference(&self, b: &[f64], skip: &[usize]) -> Self::Reference;
+    /// Between the model at `a` (without the reference's `skip` parts) and the reference.
+    fn similarity_to(&self, a: &[f64], reference: &Self::Reference) -> f64;
     /// Between the model at slot values `a` and at `b`, both without the `skip` parts.
-    fn similarity(&self, a: &[f64], b: &[f64], skip: &[usize]) -> f64;
+    fn similarity(&self, a: &[f64], b: &[f64], skip: &[usize]) -> f64 {
+        self.similarity_to(a, &self.reference(b, skip))
+    }
     /// Between the model at `x` without `part` and the model at `x`.
     fn removal(&self, x: &[f64], part: usize) -> f64;
 }
@@ -46,17 +55,29 @@ fn rows_of(c: &Candidates, i: usize) -> Vec<&Affine> {
     c.list[i].rows.iter().collect()
 }
 
+/// Whether a projection moved a point by more than round-off.
+fn moved(y: &DVector<f64>, x: &DVector<f64>, scale: f64) -> bool {
+    y.iter()
+        .zip(x.iter())
+        .any(|(a, b)| (a - b).abs() > 1e-9 * scale)
+}
+
+/// Whether any row depends on a slot in `dirty`.
+fn touches(rows: &[&Affine], dirty: &HashSet<u32>) -> bool {
+    rows.iter().any(|r| r.slots().any(|s| dirty.contains(&s)))
+}
+
 fn implied(basis: &RowBasis, rows: &[&Affine], d: usize) -> bool {
     rows.iter().all(|r| basis.contains(&dense(r, d)))
 }
 
 /// Runs the greedy selection to the end (every candidate chosen or implied).
-pub fn discover(
+pub fn discover<S: Similarity>(
     faces: &Faces,
     candidates: &Candidates,
     samples: &[Sample],
     slots: usize,
-    sim: &dyn Similarity,
+    sim: &S,
 ) -> Discovery {
     let d = slots;
     let mut basis = RowBasis::default();
@@ -73,30 +94,64 @@ pub fn discover(
         curve: vec![0.0],
         implied: Vec::new(),
     };
+    let scale = samples
+        .iter()
+        .flat_map(|s| s.values.iter())
+        .fold(1.0f64, |m, v| m.max(v.abs()));
+    let mut cache: HashMap<usize, f64> = HashMap::new();
+    let mut dirty: HashSet<u32> = HashSet::new();
     while !remaining.is_empty() && !samples.is_empty() {
         let projectors: Vec<Projector> = current
             .iter()
             .zip(samples)
             .map(|(x, s)| Projector::new(&faces.metric(x.as_slice(), &s.optional), &basis))
             .collect();
-        let mut best: Option<(f64, usize, Vec<DVector<f64>>)> = None;
+        let references: Vec<S::Reference> = current
+            .iter()
+            .zip(samples)
+            .map(|(x, s)| sim.reference(x.as_slice(), &s.optional))
+            .collect();
+        let mut best: Option<(f64, usize)> = None;
         for &c in &remaining {
             let rows = rows_of(candidates, c);
-            let mut score = 1.0;
-            let mut projected = Vec::with_capacity(samples.len());
-            for ((x, p), s) in current.iter().zip(&projectors).zip(samples) {
-                let y = p.project(x, &rows);
-                score *= sim.similarity(y.as_slice(), x.as_slice(), &s.optional);
-                projected.push(y);
-            }
-            if best.as_ref().is_none_or(|(b, ..)| score > *b) {
-                best = Some((score, c, projected));
+            let fresh = cache.contains_key(&c) && !touches(&rows, &dirty);
+            let score = if fresh {
+                cache[&c]
+            } else {
+                let mut score = 1.0;
+                for ((x, p), r) in current.iter().zip(&projectors).zip(&references) {
+                    let y = p.project(x, &rows);
+                    // A variation that already satisfies the candidate does not move.
+                    if moved(&y, x, scale) {
+                        score *= sim.similarity_to(y.as_slice(), r);
+                    }
+                }
+                cache.insert(c, score);
+                score
+            };
+            if best.is_none_or(|(b, _)| score > b) {
+                best = Some((score, c));
             }
         }
-        let Some((score, c, projected)) = best else {
+        let Some((score, c)) = best else {
             break;
         };
-        for r in rows_of(candidates, c) {
+        let rows = rows_of(candidates, c);
+        let projected: Vec<DVector<f64>> = current
+            .iter()
+            .zip(&projectors)
+            .map(|(x, p)| p.project(x, &rows))
+            .collect();
+        // Scores of candidates away from what moved are kept (algorithms.md §3).
+        dirty = rows.iter().flat_map(|r| r.slots()).collect();
+        for (y, x) in projected.iter().zip(&current) {
+            for i in 0..d {
+                if (y[i] - x[i]).abs() > 1e-9 * scale {
+                    dirty.insert(i as u32);
+                }
+            }
+        }
+        for r in rows {
             basis.add(&dense(r, d));
         }
         current = projected;

@@ -17,10 +17,10 @@ pub struct Toggle {
 }
 
 /// For each variation, the parts it does without.
-pub fn optional_parts(
+pub fn optional_parts<S: Similarity>(
     parts: usize,
     variations: &[Vec<f64>],
-    sim: &dyn Similarity,
+    sim: &S,
 ) -> Vec<Vec<usize>> {
     variations
         .iter()

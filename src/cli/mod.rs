@@ -3,6 +3,7 @@
 //! One module per subcommand; this one holds the flag definitions, the shared output
 //! helpers and the exit codes. Nothing here computes results: it calls the library.
 
+mod compile;
 mod inspect;
 
 use clap::{Parser, Subcommand};
@@ -24,9 +25,13 @@ pub const EXIT_IO_ERROR: u8 = 3;
     version,
     about = "Re-parameterize OpenSCAD models: find the relations a design relies on and expose a few meaningful sliders."
 )]
+#[command(args_conflicts_with_subcommands = true)]
 pub struct Cli {
     #[command(subcommand)]
-    command: Command,
+    command: Option<Command>,
+    /// The main job (when no subcommand is given).
+    #[command(flatten)]
+    main: compile::Args,
 }
 
 #[derive(Subcommand)]
@@ -39,7 +44,8 @@ enum Command {
 pub fn run() -> ExitCode {
     let cli = Cli::parse();
     match cli.command {
-        Command::Inspect(args) => inspect::run(args),
+        Some(Command::Inspect(args)) => inspect::run(args),
+        None => compile::run(cli.main),
     }
 }
 

@@ -1,0 +1,311 @@
+//! Exact volumes and IoU of CSG solids, by ray intervals rather than meshes.
+//!
+//! The solids are the IR's: [`Part`]s (boxes, frustums, spheres under any affine world
+//! matrix — rotations by any angle, non-uniform scale, mirrors) combined by a [`CsgNode`]
+//! tree. Nothing is polygonised: a line meets each primitive in one interval computed in
+//! closed form (slab test, quadric and caps, sphere) in the primitive's own frame; booleans
+//! act on sorted interval lists; volumes integrate the length inside along vertical lines.
+//!
+//! - [`ray_part`], [`ray_solid`]: the intervals of a line inside a part or a solid, with
+//!   outward unit normals at their ends.
+//! - [`volume`], [`volume_in`]: the volume of a solid (inside a region).
+//! - [`overlap`], [`iou`]: volumes of `A`, `B`, `A ∩ B`, `A ∪ B` (inside a region).
+//! - [`iou_local`], [`changed_region`]: incremental IoU when only some parts differ.
+//! - [`Solid`]: a prepared solid, for many queries on one model.
+//!
+//! Accuracy: solids made of boxes, axis-aligned or rotated, are integrated exactly (only
+//! rounding remains, ~1e-14 relative): the integrand is piecewise constant or linear between
+//! break lines that are all known. Curved parts (any orientation) are integrated by
+//! Gauss–Kronrod quadrature between their exact silhouette, rim and edge break points, with
+//! the kinks where two surfaces cross located by bisection; single primitives come out
+//! within ~1e-12 relative, CSG of curved parts within ~1e-9.
+//!
+//! **Incremental IoU.** If every part that differs between `A` and `B` (in either) lies
+//! inside a region `R`, then `A` and `B` coincide outside `R` — membership of a point
+//! depends only on the parts containing it — so with `V_out = vol(A) − vol(A ∩ R)`:
+//! `IoU = (V_out + |A ∩ B ∩ R|) / (V_out + |(A ∪ B) ∩ R|)`. [`iou_local`] computes this
+//! from `vol(A)` (computed once) and an integral over `R` only; [`changed_region`] finds
+//! `R` for two part lists of the same model.
+//!
+//! Invariants: no function panics on degenerate input; zero-size, singular, NaN or
+//! infinite parts are empty solids, and parts the tree refers to but that do not exist
+//! are empty too.
+
+mod aabb;
+mod breaks;
+mod csg;
+mod integrate;
+mod quad;
+mod shape;
+#[cfg(test)]
+mod tests;
+
+pub use aabb::Aabb;
+
+use crate::ir::{CsgNode, Part};
+use csg::{Iv, Program, Surf};
+use integrate::Job;
+use shape::{Hit, Shape};
+
+/// A parametrised line `origin + t·dir`, `t ∈ ℝ` (clip to `t ≥ 0` for a half-line).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Ray {
+    pub origin: [f64; 3],
+    pub dir: [f64; 3],
+}
+
+/// A stretch `t0 < t1` of a ray inside a solid, with the outward unit normals of the
+/// surfaces at its ends (`n0` at entry, `n1` at exit).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Interval {
+    pub t0: f64,
+    pub t1: f64,
+    pub n0: [f64; 3],
+    pub n1: [f64; 3],
+}
+
+/// Volumes of two solids and their boolean combinations (inside a region, if one was given).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Overlap {
+    pub a: f64,
+    pub b: f64,
+    pub inter: f64,
+    pub union: f64,
+}
+
+impl Overlap {
+    /// `inter / union`; two empty solids are identical (1).
+    pub fn iou(&self) -> f64 {
+        if self.union > 0.0 {
+            (self.inter / self.union).clamp(0.0, 1.0)
+        } else {
+            1.0
+        }
+    }
+}
+
+/// A solid ready for queries: its non-empty parts prepared, its tree flattened.
+#[derive(Debug, Clone)]
+pub struct Solid {
+    shapes: Vec<Shape>,
+    program: Program,
+}
+
+impl Solid {
+    pub fn new(parts: &[Part], csg: &CsgNode) -> Solid {
+        let mut shapes = Vec::new();
+        let mut index = vec![None; parts.len()];
+        for (i, p) in parts.iter().enumerate() {
+            if let Some(s) = Shape::new(p) {
+                index[i] = Some(shapes.len() as u32);
+                shapes.push(s);
+            }
+        }
+        let program = Program::from_csg(csg, &|i| index.get(i).copied().flatten());
+        Solid { shapes, program }
+    }
+
+    /// Tight bounds of the parts the tree uses (empty for an empty solid).
+    pub fn bounds(&self) -> Aabb {
+        self.program.shapes().fold(Aabb::empty(), |acc, i| {
+            let s = &self.shapes[i as usize];
+            acc.union(&Aabb::new(s.lo, s.hi))
+        })
+    }
+
+    /// The sorted, disjoint intervals of the ray inside the solid.
+    pub fn ray(&self, ray: &Ray) -> Vec<Interval> {
+        let mut buf = Vec::new();
+        let shapes = &self.shapes;
+        self.program.eval(
+            &mut |i| {
+                let h = shapes[i as usize].hit_ray(ray.origin, ray.dir)?;
+                Some(to_iv(i, h))
+            },
+            &mut buf,
+        );
+        buf.iter()
+            .map(|iv| Interval {
+                t0: iv.t0,
+                t1: iv.t1,
+                n0: self.normal(iv.s0, ray, iv.t0),
+                n1: self.normal(iv.s1, ray, iv.t1),
+            })
+            .collect()
+    }
+
+    fn normal(&self, s: Surf, ray: &Ray, t: f64) -> [f64; 3] {
+        let p = std::array::from_fn(|a| ray.origin[a] + t * ray.dir[a]);
+        let n = self.shapes[s.shape as usize].normal(s.face, p);
+        if s.flip { n.map(|v| -v) } else { n }
+    }
+
+    pub fn volume(&self) -> f64 {
+        integrate_pair(self, &Solid::empty(), None).a
+    }
+
+    /// The volume of the part of the solid inside `region`.
+    pub fn volume_in(&self, region: &Aabb) -> f64 {
+        integrate_pair(self, &Solid::empty(), Some(*region)).a
+    }
+
+    fn empty() -> Solid {
+        Solid {
+            shapes: Vec::new(),
+            program: Program::default(),
+        }
+    }
+}
+
+fn to_iv(shape: u32, h: Hit) -> Iv {
+    let surf = |face| Surf {
+        shape,
+        face,
+        flip: false,
+    };
+    Iv {
+        t0: h.t0,
+        t1: h.t1,
+        s0: surf(h.f0),
+        s1: surf(h.f1),
+    }
+}
+
+/// Volumes of `a`, `b` and `a ∩ b` in one integral (shapes of both in one index).
+fn integrate_pair(a: &Solid, b: &Solid, region: Option<Aabb>) -> Overlap {
+    if region.is_some_and(|r| r.is_empty()) {
+        return Overlap::default();
+    }
+    let offset = a.shapes.len() as u32;
+    let shapes: Vec<Shape> = a.shapes.iter().chain(&b.shapes).cloned().collect();
+    let pb = b.program.prune(&|_| true);
+    let pb = Program {
+        nodes: pb
+            .nodes
+            .into_iter()
+            .map(|mut n| {
+                if let csg::Op::Part(s) = n.op {
+                    n.op = csg::Op::Part(s + offset);
+                }
+                n
+            })
+            .collect(),
+    };
+    let region = region.map_or(([f64::NEG_INFINITY; 3], [f64::INFINITY; 3]), |r| {
+        (r.min, r.max)
+    });
+    let job = Job {
+        shapes: &shapes,
+        programs: [&a.program, &pb],
+        region,
+    };
+    let [va, vb, vi] = integrate::integrate(&job);
+    Overlap {
+        a: va,
+        b: vb,
+        inter: vi,
+        union: (va + vb - vi).max(0.0),
+    }
+}
+
+/// Where a ray is inside one part, exactly, with outward normals; `None` when it misses
+/// (or the part is degenerate). The interval may have negative `t`.
+pub fn ray_part(part: &Part, ray: &Ray) -> Option<Interval> {
+    let s = Shape::new(part)?;
+    let h = s.hit_ray(ray.origin, ray.dir)?;
+    let at = |t: f64| std::array::from_fn(|a| ray.origin[a] + t * ray.dir[a]);
+    Some(Interval {
+        t0: h.t0,
+        t1: h.t1,
+        n0: s.normal(h.f0, at(h.t0)),
+        n1: s.normal(h.f1, at(h.t1)),
+    })
+}
+
+/// The sorted, disjoint intervals of a ray inside the CSG solid.
+pub fn ray_solid(parts: &[Part], csg: &CsgNode, ray: &Ray) -> Vec<Interval> {
+    Solid::new(parts, csg).ray(ray)
+}
+
+/// The volume of the solid.
+pub fn volume(parts: &[Part], csg: &CsgNode) -> f64 {
+    Solid::new(parts, csg).volume()
+}
+
+/// The volume of the part of the solid inside `region`.
+pub fn volume_in(parts: &[Part], csg: &CsgNode, region: &Aabb) -> f64 {
+    Solid::new(parts, csg).volume_in(region)
+}
+
+/// Volumes of `A`, `B`, `A ∩ B` and `A ∪ B`, restricted to `region` when given.
+pub fn overlap(a: (&[Part], &CsgNode), b: (&[Part], &CsgNode), region: Option<Aabb>) -> Overlap {
+    integrate_pair(&Solid::new(a.0, a.1), &Solid::new(b.0, b.1), region)
+}
+
+/// Intersection over union of two solids (1 when both are empty).
+pub fn iou(a: (&[Part], &CsgNode), b: (&[Part], &CsgNode)) -> f64 {
+    overlap(a, b, None).iou()
+}
+
+/// IoU of `A` and `B` when they differ only inside `changed` (see the module docs), from
+/// `volume_a = volume(A)` and an integral over `changed` alone.
+pub fn iou_local(
+    a: (&[Part], &CsgNode),
+    b: (&[Part], &CsgNode),
+    changed: &Aabb,
+    volume_a: f64,
+) -> f64 {
+    let local = overlap(a, b, Some(*changed));
+    let outside = (volume_a - local.a).max(0.0);
+    let union = outside + local.union;
+    if union > 0.0 {
+        ((outside + local.inter) / union).clamp(0.0, 1.0)
+    } else {
+        1.0
+    }
+}
+
+/// The bounds of every part that differs (in primitive or world matrix, by value) between
+/// two part lists of the same model, in either list; `None` when the lists differ in
+/// length (then no region short of everything is safe). An empty box: nothing changed.
+pub fn changed_region(a: &[Part], b: &[Part]) -> Option<Aabb> {
+    if a.len() != b.len() {
+        return None;
+    }
+    let same = |p: &Part, q: &Part| {
+        p.world.values() == q.world.values() && same_primitive(&p.primitive, &q.primitive)
+    };
+    Some(
+        a.iter()
+            .zip(b)
+            .filter(|(p, q)| !same(p, q))
+            .fold(Aabb::empty(), |acc, (p, q)| {
+                acc.union(&Aabb::of_part(p)).union(&Aabb::of_part(q))
+            }),
+    )
+}
+
+fn same_primitive(p: &crate::ir::Primitive, q: &crate::ir::Primitive) -> bool {
+    use crate::ir::Primitive::*;
+    match (p, q) {
+        (Cube { size: a, center: c }, Cube { size: b, center: d }) => {
+            c == d && (0..3).all(|i| a[i].value == b[i].value)
+        }
+        (
+            Cylinder {
+                h: h1,
+                r1: a1,
+                r2: b1,
+                center: c1,
+            },
+            Cylinder {
+                h: h2,
+                r1: a2,
+                r2: b2,
+                center: c2,
+            },
+        ) => c1 == c2 && h1.value == h2.value && a1.value == a2.value && b1.value == b2.value,
+        (Sphere { r: a }, Sphere { r: b }) => a.value == b.value,
+        _ => false,
+    }
+}
