@@ -22,6 +22,9 @@ pub struct LossSpec {
     pub blur: f64,
     /// Weight of the shade channel (the coverage channel has weight 1).
     pub shading: f64,
+    /// Compare after this many 2×2 average poolings (0: at full resolution). Coarse levels
+    /// see parts that are far from where they should be.
+    pub level: u32,
 }
 
 impl Default for LossSpec {
@@ -30,6 +33,7 @@ impl Default for LossSpec {
             sharpen: 0.2,
             blur: 1.0,
             shading: 0.5,
+            level: 0,
         }
     }
 }
@@ -101,6 +105,25 @@ impl Target {
             s: img.s.clone(),
             grey,
             background: [1.0; 3],
+        }
+    }
+
+    /// The target at half the size (2×2 average pooling of its channels).
+    pub fn pooled(&self) -> Target {
+        let (m, w, h) = pool(&self.m, self.width, self.height);
+        let s = pool(&self.s, self.width, self.height).0;
+        let grey = m
+            .iter()
+            .zip(&s)
+            .map(|(&m, &s)| if m > 1e-6 { s / m } else { 0.0 })
+            .collect();
+        Target {
+            width: w,
+            height: h,
+            m,
+            s,
+            grey,
+            background: self.background,
         }
     }
 
@@ -218,12 +241,61 @@ pub struct ViewLoss {
     pub gs: Vec<f32>,
 }
 
-/// `mean(sharpen(M − M_T)²) + w·mean(sharpen(S − S_T)²)` and its derivatives.
+/// 2×2 average pooling (a last odd row or column is averaged on its own).
+pub fn pool(img: &[f32], w: u32, h: u32) -> (Vec<f32>, u32, u32) {
+    let (w2, h2) = (w.div_ceil(2), h.div_ceil(2));
+    let mut out = vec![0.0f32; (w2 * h2) as usize];
+    for y in 0..h2 {
+        for x in 0..w2 {
+            let mut acc = 0.0;
+            let mut n = 0.0;
+            for (dx, dy) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
+                let (xx, yy) = (2 * x + dx, 2 * y + dy);
+                if xx < w && yy < h {
+                    acc += img[(yy * w + xx) as usize];
+                    n += 1.0;
+                }
+            }
+            out[(y * w2 + x) as usize] = acc / n;
+        }
+    }
+    (out, w2, h2)
+}
+
+/// The transpose of [`pool`]: each coarse value spread back over the pixels it averaged.
+pub fn unpool(img: &[f32], w: u32, h: u32) -> Vec<f32> {
+    let w2 = w.div_ceil(2);
+    let mut out = vec![0.0f32; (w * h) as usize];
+    for y in 0..h {
+        for x in 0..w {
+            let (cx, cy) = (x / 2, y / 2);
+            let nx = if 2 * cx + 1 < w { 2.0 } else { 1.0 };
+            let ny = if 2 * cy + 1 < h { 2.0 } else { 1.0 };
+            out[(y * w + x) as usize] = img[(cy * w2 + cx) as usize] / (nx * ny);
+        }
+    }
+    out
+}
+
+/// `mean(sharpen(M − M_T)²) + w·mean(sharpen(S − S_T)²)` (after `spec.level` poolings) and
+/// its derivatives.
 pub fn view_loss(render: &SoftImage, target: &Target, spec: &LossSpec, grad: bool) -> ViewLoss {
-    let (w, h) = (render.width, render.height);
+    let (w0, h0) = (render.width, render.height);
+    let mut rm: Vec<f32> = render.m.iter().zip(&target.m).map(|(a, b)| a - b).collect();
+    let mut rs: Vec<f32> = render.s.iter().zip(&target.s).map(|(a, b)| a - b).collect();
+    let mut sizes = vec![(w0, h0)];
+    let (mut w, mut h) = (w0, h0);
+    for _ in 0..spec.level {
+        if w < 4 || h < 4 {
+            break;
+        }
+        let (pm, w2, h2) = pool(&rm, w, h);
+        rm = pm;
+        rs = pool(&rs, w, h).0;
+        (w, h) = (w2, h2);
+        sizes.push((w, h));
+    }
     let n = (w * h) as f64;
-    let rm: Vec<f32> = render.m.iter().zip(&target.m).map(|(a, b)| a - b).collect();
-    let rs: Vec<f32> = render.s.iter().zip(&target.s).map(|(a, b)| a - b).collect();
     let qm = sharpen(&rm, w, h, spec);
     let qs = sharpen(&rs, w, h, spec);
     let sm: f64 = qm.iter().map(|&v| (v as f64) * (v as f64)).sum();
@@ -238,14 +310,19 @@ pub fn view_loss(render: &SoftImage, target: &Target, spec: &LossSpec, grad: boo
     }
     let km = (2.0 / n) as f32;
     let ks = (2.0 * spec.shading / n) as f32;
-    let gm = sharpen(&qm, w, h, spec)
+    let mut gm: Vec<f32> = sharpen(&qm, w, h, spec)
         .into_iter()
         .map(|v| v * km)
         .collect();
-    let gs = sharpen(&qs, w, h, spec)
+    let mut gs: Vec<f32> = sharpen(&qs, w, h, spec)
         .into_iter()
         .map(|v| v * ks)
         .collect();
+    for k in (0..sizes.len() - 1).rev() {
+        let (wk, hk) = sizes[k];
+        gm = unpool(&gm, wk, hk);
+        gs = unpool(&gs, wk, hk);
+    }
     ViewLoss { loss, gm, gs }
 }
 
@@ -264,6 +341,18 @@ mod tests {
         let l: f32 = sa.iter().zip(&b).map(|(x, y)| x * y).sum();
         let r: f32 = a.iter().zip(&sb).map(|(x, y)| x * y).sum();
         assert!((l - r).abs() < 1e-4);
+    }
+
+    #[test]
+    fn unpool_is_the_transpose_of_pool() {
+        let (w, h) = (5u32, 3u32);
+        let a: Vec<f32> = (0..15).map(|i| ((i * 37) % 11) as f32).collect();
+        let b: Vec<f32> = (0..6).map(|i| ((i * 13) % 7) as f32).collect();
+        let pa = pool(&a, w, h).0;
+        let ub = unpool(&b, w, h);
+        let l: f32 = pa.iter().zip(&b).map(|(x, y)| x * y).sum();
+        let r: f32 = a.iter().zip(&ub).map(|(x, y)| x * y).sum();
+        assert!((l - r).abs() < 1e-3);
     }
 
     #[test]

@@ -18,6 +18,7 @@ use crate::render::scene::{Kind, NSHADE, NTHETA, PartGeom, Scene, theta_at, thet
 use crate::render::soft::{ViewPrep, prepare_view};
 use crate::render::{Backend, fit_shade};
 use loss::{LossSpec, Target};
+use nalgebra::DMatrix;
 use optimize::{OptState, Optimizer, Space};
 
 /// Settings of a fit; [`FitOptions::default`] is the paper's schedule.
@@ -36,6 +37,13 @@ pub struct FitOptions {
     pub max_step: f64,
     /// Match each view's shading to its target at the start of every round.
     pub fit_shading: bool,
+    /// Smallest world extent of a part, in units of the model's size.
+    pub min_extent: f64,
+    /// Coarse-to-fine: the first rounds render at `1/2^levels` of the targets' size and
+    /// compare with pooled targets, one level finer every `rounds / (2·levels)` rounds, so
+    /// parts far from their place in the target still feel it (and early rounds are cheap).
+    /// 0: the paper's single resolution.
+    pub levels: u32,
 }
 
 impl Default for FitOptions {
@@ -50,6 +58,8 @@ impl Default for FitOptions {
             loss: LossSpec::default(),
             max_step: 0.02,
             fit_shading: true,
+            min_extent: 0.002,
+            levels: 0,
         }
     }
 }
@@ -85,6 +95,8 @@ pub struct Parametric {
     pub x0: Vec<f64>,
     /// The model's size (longest side of its bounding box).
     pub scale: f64,
+    /// Fixed points per circle of each curved part's silhouette (see [`Parametric::fix_rings`]).
+    pub rings: Vec<u32>,
 }
 
 impl Parametric {
@@ -105,7 +117,27 @@ impl Parametric {
             csg: model.csg.clone(),
             x0: model.slot_values(),
             scale: model.size().max(1e-9),
+            rings: Vec::new(),
         }
+    }
+
+    /// Fixes each curved part's silhouette polygon to the finest count any camera needs at
+    /// the start, so the loss stays smooth as radii change.
+    pub fn fix_rings(&mut self, cameras: &[Camera]) {
+        let geoms = self.geoms(&self.x0);
+        self.rings = geoms
+            .iter()
+            .map(|g| {
+                cameras
+                    .iter()
+                    .map(|c| {
+                        let r = g.r1.max(g.r2);
+                        crate::render::scene::ring_count(g, &c.frame(), r) as u32
+                    })
+                    .max()
+                    .unwrap_or(0)
+            })
+            .collect();
     }
 
     /// The parts' geometry at slot values `x`.
@@ -114,8 +146,11 @@ impl Parametric {
             .iter()
             .zip(&self.forms)
             .zip(&self.kinds)
-            .map(|((p, f), &(kind, centered))| {
-                PartGeom::from_theta(kind, centered, theta_at(p, f, x))
+            .enumerate()
+            .map(|(i, ((p, f), &(kind, centered)))| {
+                let mut g = PartGeom::from_theta(kind, centered, theta_at(p, f, x));
+                g.ring = self.rings.get(i).copied().unwrap_or(0);
+                g
             })
             .collect()
     }
@@ -140,6 +175,63 @@ impl Parametric {
             }
         }
         g
+    }
+
+    /// Lower bounds that keep every part a solid: each size (and each scale factor of an
+    /// axis-aligned transform) stays at least `min_extent` in world units, radii stay
+    /// non-negative. Only bounds that hold at `x₀` are returned.
+    pub fn guards(&self, min_extent: f64) -> Vec<(Affine, f64)> {
+        let mut out: Vec<(Affine, f64)> = Vec::new();
+        let x0 = &self.x0;
+        for (i, (forms, &(kind, _))) in self.forms.iter().zip(&self.kinds).enumerate() {
+            let g = PartGeom::from_part(&self.base[i]);
+            let col = |j: usize| -> f64 {
+                (0..3)
+                    .map(|r| g.theta[4 * r + j].powi(2))
+                    .sum::<f64>()
+                    .sqrt()
+                    .max(1e-300)
+            };
+            let local = [g.hi[0] - g.lo[0], g.hi[1] - g.lo[1], g.hi[2] - g.lo[2]];
+            let mut push = |f: &Option<Affine>, sign: f64, min: f64| {
+                if let Some(f) = f {
+                    let f = f.scale(sign);
+                    if f.eval(x0) >= min {
+                        out.push((f, min));
+                    }
+                }
+            };
+            match kind {
+                Kind::Box => {
+                    for a in 0..3 {
+                        push(&forms[12 + a], 1.0, min_extent / col(a));
+                    }
+                }
+                Kind::Frustum => {
+                    push(&forms[12], 1.0, min_extent / col(2));
+                    push(&forms[13], 1.0, 0.0);
+                    push(&forms[14], 1.0, 0.0);
+                    if let (Some(a), Some(b)) = (&forms[13], &forms[14]) {
+                        push(&Some(a.add(b)), 1.0, min_extent / col(0).max(col(1)));
+                    }
+                }
+                Kind::Sphere => push(&forms[12], 1.0, min_extent / col(0)),
+            }
+            // Scale factors of an axis-aligned map keep their sign and some size.
+            let aligned =
+                (0..3).all(|r| (0..3).filter(|&c| g.theta[4 * r + c] != 0.0).count() == 1);
+            if aligned {
+                for r in 0..3 {
+                    for c in 0..3 {
+                        let v = g.theta[4 * r + c];
+                        if v != 0.0 && local[c] > 0.0 {
+                            push(&forms[4 * r + c], v.signum(), min_extent / local[c]);
+                        }
+                    }
+                }
+            }
+        }
+        out
     }
 
     /// Slots that reach some part's geometry.
@@ -225,26 +317,129 @@ pub fn check(
     Ok(())
 }
 
-/// Fits slot values so renders from `cameras` match `targets`.
+/// Moves `y` onto `{y : f(x(y)) ≥ min}` for every guard it violates (a few sweeps of
+/// half-space projections).
+fn project_guards(guards: &[(Affine, f64)], space: &Space, y: &mut [f64]) {
+    for _ in 0..8 {
+        let x = space.x(y);
+        let mut moved = false;
+        for (f, min) in guards {
+            let v = f.eval(&x);
+            if v >= *min {
+                continue;
+            }
+            // ∂f/∂y = scale·Bᵀ·a.
+            let mut a = vec![0.0; x.len()];
+            for &(s, c) in &f.terms {
+                a[s as usize] = c;
+            }
+            let g = space.grad_y(&a);
+            let n2: f64 = g.iter().map(|v| v * v).sum();
+            if n2 <= 0.0 {
+                continue;
+            }
+            // Aim a little inside so rounding does not leave it violated.
+            let k = (min - v) * 1.000001 / n2;
+            for (yi, gi) in y.iter_mut().zip(&g) {
+                *yi += k * gi;
+            }
+            moved = true;
+        }
+        if !moved {
+            break;
+        }
+    }
+}
+
+/// One stage of a fit: where it moves and for how many rounds. Each stage starts where the
+/// previous one ended.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Stage {
+    /// A basis `N` (d × d′) of the directions to move in; `None`: every slot.
+    pub basis: Option<DMatrix<f64>>,
+    pub rounds: usize,
+}
+
+impl Stage {
+    pub fn slots(rounds: usize) -> Stage {
+        Stage {
+            basis: None,
+            rounds,
+        }
+    }
+}
+
+/// The default schedule: the first `warm` rounds inside the structural subspace (the
+/// relations that hold a design together; parts move with what they touch), the rest in
+/// slot space.
+pub fn staged(model: &Model, rounds: usize, warm: usize) -> Vec<Stage> {
+    let warm = warm.min(rounds);
+    let mut stages = Vec::new();
+    if warm > 0 {
+        stages.push(Stage {
+            basis: Some(structure_basis(model)),
+            rounds: warm,
+        });
+    }
+    if rounds > warm {
+        stages.push(Stage::slots(rounds - warm));
+    }
+    stages
+}
+
+/// Null-space basis of constraint rows over `d` slots.
+pub fn basis_of(rows: &[&Affine], d: usize) -> DMatrix<f64> {
+    let c = crate::analysis::linalg::matrix(rows, d);
+    optimize::null_space(&c)
+}
+
+/// The subspace of every relation that holds on the model (its base constraints).
+pub fn constraint_basis(model: &Model) -> DMatrix<f64> {
+    let c = crate::analysis::find_candidates(model);
+    let rows: Vec<&Affine> = c.list.iter().flat_map(|k| k.rows.iter()).collect();
+    basis_of(&rows, model.slots.len())
+}
+
+/// The subspace of the structural prior: contacts, coaxiality, repeated parts' sizes.
+pub fn structure_basis(model: &Model) -> DMatrix<f64> {
+    let c = crate::analysis::find_candidates(model);
+    let keep = crate::analysis::prior::structural_prior(model, &c);
+    let rows: Vec<&Affine> = keep.iter().flat_map(|&i| c.list[i].rows.iter()).collect();
+    basis_of(&rows, model.slots.len())
+}
+
+/// Fits slot values so renders from `cameras` match `targets`, stage after stage.
 pub fn fit(
     problem: &Parametric,
     cameras: &[Camera],
     targets: &[Target],
-    space: &Space,
+    stages: &[Stage],
     backend: &mut dyn Backend,
     opts: &FitOptions,
     progress: &mut dyn FnMut(&Progress),
 ) -> Result<FitResult, FitError> {
     check(problem, cameras, targets, backend)?;
-    if space.x_base.len() != problem.x0.len() {
-        return Err(FitError::Basis(space.x_base.len(), problem.x0.len()));
+    let mut fixed;
+    let problem = if problem.rings.is_empty() {
+        fixed = problem.clone();
+        fixed.fix_rings(cameras);
+        &fixed
+    } else {
+        problem
+    };
+    let d = problem.x0.len();
+    for st in stages {
+        if let Some(b) = &st.basis {
+            if b.nrows() != d {
+                return Err(FitError::Basis(b.nrows(), d));
+            }
+        }
     }
-    let dim = space.dim();
-    let mut y = vec![0.0; dim];
-    // In a subspace the start is the particular point's offset from x₀ projected away.
-    let mut state = OptState::new(opts.optimizer, dim);
+    // Parts that start out drawable must stay so.
+    let drawable: Vec<bool> = problem.geoms(&problem.x0).iter().map(|g| g.valid).collect();
+    let guards = problem.guards(opts.min_extent * problem.scale);
     let mut shades = vec![DEFAULT_SHADE_PRIOR; cameras.len()];
-    let rounds = opts.rounds.max(1);
+    let rounds: usize = stages.iter().map(|s| s.rounds).sum::<usize>().max(1);
     let total_steps = rounds * opts.iterations;
     let mut curve = Vec::with_capacity(total_steps);
     let sigma_at = |r: usize| {
@@ -255,31 +450,65 @@ pub fn fit(
             opts.sigma.0 * (opts.sigma.1 / opts.sigma.0).powf(f)
         }
     };
-    let image_loss =
-        |backend: &mut dyn Backend, x: &[f64], sigma: f64, shades: &[[f64; NSHADE]], grad: bool| {
-            let scene = problem.scene(x);
-            let views: Vec<ViewPrep> = cameras
-                .iter()
-                .map(|c| prepare_view(&scene, c, Some(sigma)))
-                .collect();
-            backend.loss(&scene, &views, sigma, shades, targets, &opts.loss, grad)
-        };
-    let refit_shades = |backend: &mut dyn Backend, x: &[f64], shades: &mut Vec<[f64; NSHADE]>| {
-        if !opts.fit_shading {
-            return;
+    // Coarse levels render smaller images and compare with pooled targets.
+    let mut max_level = 0u32;
+    while max_level < opts.levels
+        && cameras.iter().all(|c| {
+            let k = 1u32 << (max_level + 1);
+            c.width % k == 0 && c.height % k == 0 && c.width / k >= 16 && c.height / k >= 16
+        })
+    {
+        max_level += 1;
+    }
+    let mut pyramid: Vec<(Vec<Camera>, Vec<Target>)> = vec![(cameras.to_vec(), targets.to_vec())];
+    for k in 1..=max_level as usize {
+        let (cams, tgts) = &pyramid[k - 1];
+        let next = (
+            cams.iter()
+                .map(|c| c.with_size(c.width / 2, c.height / 2))
+                .collect(),
+            tgts.iter().map(Target::pooled).collect(),
+        );
+        pyramid.push(next);
+    }
+    let level_at = |r: usize| -> usize {
+        if max_level == 0 {
+            return 0;
         }
-        let scene = problem.scene(x);
-        let views: Vec<ViewPrep> = cameras
-            .iter()
-            .map(|c| prepare_view(&scene, c, None))
-            .collect();
-        let hard = backend.render(&scene, &views, None, shades);
-        for ((sh, (_, h)), t) in shades.iter_mut().zip(&hard).zip(targets) {
-            *sh = fit_shade(h, t, DEFAULT_SHADE_PRIOR);
-        }
+        // The first half of the rounds walks down the levels; the rest is full resolution.
+        let half = (rounds / 2).max(1);
+        let per = (half as f64 / max_level as f64).max(1.0);
+        max_level.saturating_sub((r as f64 / per) as u32) as usize
     };
-    refit_shades(backend, &problem.x0, &mut shades);
-    let start_loss = image_loss(backend, &space.x(&y), opts.sigma.1, &shades, false).per_view;
+    let image_loss = |backend: &mut dyn Backend,
+                      level: usize,
+                      x: &[f64],
+                      sigma: f64,
+                      shades: &[[f64; NSHADE]],
+                      grad: bool| {
+        let (cams, tgts) = &pyramid[level];
+        let scene = problem.scene(x);
+        let views: Vec<ViewPrep> = cams
+            .iter()
+            .map(|c| prepare_view(&scene, c, Some(sigma)))
+            .collect();
+        backend.loss(&scene, &views, sigma, shades, tgts, &opts.loss, grad)
+    };
+    let refit_shades =
+        |backend: &mut dyn Backend, level: usize, x: &[f64], shades: &mut Vec<[f64; NSHADE]>| {
+            if !opts.fit_shading {
+                return;
+            }
+            let (cams, tgts) = &pyramid[level];
+            let scene = problem.scene(x);
+            let views: Vec<ViewPrep> = cams.iter().map(|c| prepare_view(&scene, c, None)).collect();
+            let hard = backend.render(&scene, &views, None, shades);
+            for ((sh, (_, h)), t) in shades.iter_mut().zip(&hard).zip(tgts) {
+                *sh = fit_shade(h, t, DEFAULT_SHADE_PRIOR);
+            }
+        };
+    refit_shades(backend, 0, &problem.x0, &mut shades);
+    let start_loss = image_loss(backend, 0, &problem.x0, opts.sigma.1, &shades, false).per_view;
     let reg = |x: &[f64]| -> (f64, Vec<f64>) {
         let mut v = 0.0;
         let mut g = vec![0.0; x.len()];
@@ -290,58 +519,76 @@ pub fn fit(
         }
         (opts.lambda * v, g)
     };
-    for round in 0..rounds {
-        let sigma = sigma_at(round);
-        if round > 0 {
-            refit_shades(backend, &space.x(&y), &mut shades);
-        }
-        for it in 0..opts.iterations {
-            let x = space.x(&y);
-            let out = image_loss(backend, &x, sigma, &shades, true);
-            let (rv, rg) = reg(&x);
-            let mut gx = problem.chain(&out.dtheta);
-            for (g, r) in gx.iter_mut().zip(&rg) {
-                *g += r;
-            }
-            let gy = space.grad_y(&gx);
-            let mut delta = state.step(&gy, opts.lr);
-            let big = delta.iter().fold(0.0f64, |a, d| a.max(d.abs()));
-            if big > opts.max_step && big.is_finite() {
-                let k = opts.max_step / big;
-                delta.iter_mut().for_each(|d| *d *= k);
-            }
-            // Never step to a degenerate part (non-positive size, singular transform).
-            let mut tried = 0;
-            loop {
-                let cand: Vec<f64> = y.iter().zip(&delta).map(|(a, d)| a - d).collect();
-                let geoms = problem.geoms(&space.x(&cand));
-                if geoms.iter().all(|g| g.valid) && cand.iter().all(|v| v.is_finite()) {
-                    y = cand;
-                    break;
+    let mut x = problem.x0.clone();
+    let mut round = 0;
+    for stage in stages {
+        let space = Space {
+            x_base: nalgebra::DVector::from_column_slice(&x),
+            basis: stage.basis.clone(),
+            scale: problem.scale,
+        };
+        let dim = space.dim();
+        let mut y = vec![0.0; dim];
+        let mut state = OptState::new(opts.optimizer, dim);
+        for _ in 0..stage.rounds {
+            let sigma = sigma_at(round);
+            let level = level_at(round);
+            refit_shades(backend, level, &space.x(&y), &mut shades);
+            for it in 0..opts.iterations {
+                let xs = space.x(&y);
+                let out = image_loss(backend, level, &xs, sigma, &shades, true);
+                let (rv, rg) = reg(&xs);
+                let mut gx = problem.chain(&out.dtheta);
+                for (g, r) in gx.iter_mut().zip(&rg) {
+                    *g += r;
                 }
-                tried += 1;
-                if tried > 10 {
-                    break;
+                let gy = space.grad_y(&gx);
+                let mut delta = state.step(&gy, opts.lr);
+                let big = delta.iter().fold(0.0f64, |a, d| a.max(d.abs()));
+                if big > opts.max_step && big.is_finite() {
+                    let k = opts.max_step / big;
+                    delta.iter_mut().for_each(|d| *d *= k);
                 }
-                delta.iter_mut().for_each(|d| *d *= 0.5);
+                // Sizes stay above their guards: project the step onto the violated bounds.
+                let mut cand: Vec<f64> = y.iter().zip(&delta).map(|(a, d)| a - d).collect();
+                project_guards(&guards, &space, &mut cand);
+                for (d, (a, c)) in delta.iter_mut().zip(y.iter().zip(&cand)) {
+                    *d = a - c;
+                }
+                // Never step to a degenerate part (non-positive size, singular transform).
+                for _ in 0..10 {
+                    let cand: Vec<f64> = y.iter().zip(&delta).map(|(a, d)| a - d).collect();
+                    let ok = cand.iter().all(|v| v.is_finite())
+                        && problem
+                            .geoms(&space.x(&cand))
+                            .iter()
+                            .zip(&drawable)
+                            .all(|(g, &was)| g.valid || !was);
+                    if ok {
+                        y = cand;
+                        break;
+                    }
+                    delta.iter_mut().for_each(|d| *d *= 0.5);
+                }
+                let step = Step {
+                    round,
+                    iteration: it,
+                    loss: out.total() + rv,
+                    image_loss: out.total(),
+                    sigma,
+                };
+                curve.push(step);
+                progress(&Progress {
+                    step: &step,
+                    total_steps,
+                });
             }
-            let step = Step {
-                round,
-                iteration: it,
-                loss: out.total() + rv,
-                image_loss: out.total(),
-                sigma,
-            };
-            curve.push(step);
-            progress(&Progress {
-                step: &step,
-                total_steps,
-            });
+            round += 1;
         }
+        x = space.x(&y);
     }
-    let x = space.x(&y);
-    refit_shades(backend, &x, &mut shades);
-    let end_loss = image_loss(backend, &x, opts.sigma.1, &shades, false).per_view;
+    refit_shades(backend, 0, &x, &mut shades);
+    let end_loss = image_loss(backend, 0, &x, opts.sigma.1, &shades, false).per_view;
     Ok(FitResult {
         x0: problem.x0.clone(),
         x,

@@ -60,6 +60,9 @@ pub struct PartGeom {
     pub center: Vec3,
     /// False for a degenerate part (singular map, negative size): it is never drawn.
     pub valid: bool,
+    /// Points per circle of a curved part's silhouette; 0 chooses from the view. A fit
+    /// fixes it so the polygon does not change shape as sizes change.
+    pub ring: u32,
 }
 
 /// A ray's passage through a convex part: entry and exit parameters with outward normals.
@@ -184,6 +187,7 @@ impl PartGeom {
             r2,
             center,
             valid,
+            ring: 0,
         }
     }
 
@@ -642,6 +646,65 @@ impl Hull {
         (-best, at)
     }
 
+    /// Soft coverage of pixel `u` with edge softness `sigma`, and `∂α/∂s` for the (at most
+    /// two) edges it depends on.
+    ///
+    /// Near one edge the coverage is `sigmoid(s/σ)`. Where the polygon is thin (an edge
+    /// roughly opposite the nearest one is also near), the far side is subtracted too:
+    /// `α = max(0, 1 − σ(d₁/σ) − σ(d₂/σ))` with `d = −s` the outward distances. That keeps a
+    /// thin part's total coverage equal to its area at any softness, so blurring never
+    /// pushes thin parts to vanish.
+    #[inline]
+    pub fn coverage(&self, u: [f64; 2], sigma: f64) -> Coverage {
+        let (s1, e1) = self.signed_distance(u);
+        let mut c = Coverage {
+            alpha: 0.0,
+            s: s1,
+            edges: [(e1 as u32, 0.0), (0, 0.0)],
+            n: 0,
+        };
+        let band = CUTOFF * sigma;
+        if s1 <= -band {
+            return c;
+        }
+        if s1 >= band {
+            c.alpha = 1.0;
+            return c;
+        }
+        let n1 = self.edges[e1].0;
+        // The nearest roughly opposite edge.
+        let mut d2 = f64::NEG_INFINITY;
+        let mut e2 = usize::MAX;
+        for (i, &(n, off)) in self.edges.iter().enumerate() {
+            if n[0] * n1[0] + n[1] * n1[1] < -0.7 {
+                let d = n[0] * u[0] + n[1] * u[1] - off;
+                if d > d2 {
+                    d2 = d;
+                    e2 = i;
+                }
+            }
+        }
+        let f1 = logistic(-s1 / sigma);
+        let (f2, use2) = if e2 != usize::MAX && d2 > -band {
+            (logistic(d2 / sigma), true)
+        } else {
+            (0.0, false)
+        };
+        let a = 1.0 - f1 - f2;
+        if a <= 0.0 {
+            return c;
+        }
+        c.alpha = a;
+        // ∂α/∂s = σ'(d/σ)/σ with s = −d.
+        c.edges[0].1 = f1 * (1.0 - f1) / sigma;
+        c.n = 1;
+        if use2 {
+            c.edges[1] = (e2 as u32, f2 * (1.0 - f2) / sigma);
+            c.n = 2;
+        }
+        c
+    }
+
     /// `∂s/∂a` and `∂s/∂b` for edge `i` (`a` its start vertex, `b` its end).
     pub fn edge_gradient(&self, i: usize, u: [f64; 2]) -> ([f64; 2], [f64; 2]) {
         let a = self.verts[i];
@@ -657,6 +720,22 @@ impl Hull {
         // s = −d
         ([-dd_da[0], -dd_da[1]], [-dd_db[0], -dd_db[1]])
     }
+}
+
+/// A pixel's soft coverage of one hull.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Coverage {
+    pub alpha: f64,
+    /// Signed distance to the nearest edge (pixels, positive inside).
+    pub s: f64,
+    /// `(edge, ∂α/∂s_edge)` for the first `n` entries.
+    pub edges: [(u32, f64); 2],
+    pub n: usize,
+}
+
+#[inline]
+pub fn logistic(x: f64) -> f64 {
+    1.0 / (1.0 + (-x).exp())
 }
 
 /// The local sample points whose projections bound the part's silhouette in this view.
@@ -741,8 +820,12 @@ pub fn samples(p: &PartGeom, frame: &Frame) -> Vec<Sample> {
     }
 }
 
-/// Points per circle so the polygon is within [`CHORD_TOLERANCE`] pixels of the circle.
-fn ring_count(p: &PartGeom, frame: &Frame, r: f64) -> usize {
+/// Points per circle so the polygon is within [`CHORD_TOLERANCE`] pixels of the circle
+/// (or the part's fixed count).
+pub fn ring_count(p: &PartGeom, frame: &Frame, r: f64) -> usize {
+    if p.ring > 0 {
+        return p.ring as usize;
+    }
     let stretch = (0..3)
         .map(|j| norm([p.l[0][j], p.l[1][j], p.l[2][j]]))
         .fold(0.0f64, f64::max);

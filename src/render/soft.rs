@@ -12,8 +12,8 @@
 
 use super::camera::{Camera, Frame, Vec3};
 use super::scene::{
-    CUTOFF, Hull, NSHADE, NTHETA, PartGeom, Scene, eval_inside, eval_soft, hull, sample_jacobian,
-    shade_features,
+    CUTOFF, Coverage, Hull, NSHADE, NTHETA, PartGeom, Scene, eval_inside, eval_soft, hull,
+    sample_jacobian, shade_features,
 };
 use rayon::prelude::*;
 
@@ -134,25 +134,10 @@ struct Layer {
 /// Per-part state at a pixel.
 #[derive(Clone, Copy)]
 struct PartAt {
-    s: f64,
-    edge: u32,
     alpha: f64,
     hull: bool,
+    cov: Coverage,
     hit: Option<super::scene::Hit>,
-}
-
-fn sigmoid(x: f64) -> f64 {
-    1.0 / (1.0 + (-x).exp())
-}
-
-fn coverage(s: f64, sigma: f64) -> f64 {
-    if s <= -CUTOFF * sigma {
-        0.0
-    } else if s >= CUTOFF * sigma {
-        1.0
-    } else {
-        sigmoid(s / sigma)
-    }
 }
 
 struct PixelCtx<'a> {
@@ -175,10 +160,14 @@ impl PixelCtx<'_> {
     fn part_at(&self, p: usize, u: [f64; 2], o: Vec3, d: Vec3) -> PartAt {
         let g: &PartGeom = &self.scene.parts[p];
         let mut st = PartAt {
-            s: f64::NEG_INFINITY,
-            edge: 0,
             alpha: 0.0,
             hull: false,
+            cov: Coverage {
+                alpha: 0.0,
+                s: f64::NEG_INFINITY,
+                edges: [(0, 0.0); 2],
+                n: 0,
+            },
             hit: None,
         };
         if !g.valid {
@@ -186,17 +175,26 @@ impl PixelCtx<'_> {
         }
         let mut test = true;
         if let Some(h) = &self.prep.hulls[p] {
-            let (s, e) = h.signed_distance(u);
-            st.s = s;
-            st.edge = e as u32;
             st.hull = true;
-            test = s > -HULL_MARGIN;
+            st.cov = match self.sigma {
+                Some(sigma) => h.coverage(u, sigma),
+                None => {
+                    let (s, e) = h.signed_distance(u);
+                    Coverage {
+                        alpha: 0.0,
+                        s,
+                        edges: [(e as u32, 0.0), (0, 0.0)],
+                        n: 0,
+                    }
+                }
+            };
+            test = st.cov.s > -HULL_MARGIN;
         }
         if test {
             st.hit = g.intersect(o, d).filter(|h| h.t1 > 0.0);
         }
         st.alpha = match (self.sigma, st.hull) {
-            (Some(sigma), true) => coverage(st.s, sigma),
+            (Some(_), true) => st.cov.alpha,
             _ => {
                 if st.hit.is_some() {
                     1.0
@@ -307,7 +305,7 @@ impl PixelCtx<'_> {
             m += t * l.alpha;
             t *= 1.0 - l.alpha;
         }
-        if let (Some(entries), Some(sigma)) = (entries, self.sigma) {
+        if let (Some(entries), Some(_)) = (entries, self.sigma) {
             // Composites of what lies behind each layer.
             let mut mb = vec![0.0; n + 1];
             let mut sb = vec![0.0; n + 1];
@@ -331,7 +329,7 @@ impl PixelCtx<'_> {
                     if !item.parts.contains(&(p as usize)) || !st.hull {
                         continue;
                     }
-                    if st.s.abs() >= CUTOFF * sigma {
+                    if st.cov.n == 0 {
                         continue;
                     }
                     let da_item = if item.is_single() {
@@ -348,21 +346,22 @@ impl PixelCtx<'_> {
                     if da_item == 0.0 {
                         continue;
                     }
-                    let dalpha_ds = st.alpha * (1.0 - st.alpha) / sigma;
-                    let f = da_item * dalpha_ds;
                     let Some(h) = &self.prep.hulls[p as usize] else {
                         continue;
                     };
-                    let (ga, gb) = h.edge_gradient(st.edge as usize, u);
-                    entries.push(Entry {
-                        pixel,
-                        part: p,
-                        edge: st.edge,
-                        dm: dm_da * f,
-                        ds: ds_da * f,
-                        ga,
-                        gb,
-                    });
+                    for &(edge, dalpha_ds) in &st.cov.edges[..st.cov.n] {
+                        let f = da_item * dalpha_ds;
+                        let (ga, gb) = h.edge_gradient(edge as usize, u);
+                        entries.push(Entry {
+                            pixel,
+                            part: p,
+                            edge,
+                            dm: dm_da * f,
+                            ds: ds_da * f,
+                            ga,
+                            gb,
+                        });
+                    }
                 }
             }
         }

@@ -1,0 +1,218 @@
+//! The fitting quality table: every example model, fitted from its base to targets that
+//! OpenSCAD rendered of each of its variants, scored by exact 3-D IoU.
+//!
+//! Shared by `benches/fit_quality.rs` (the whole table) and `tests/fit_quality.rs` (a fast
+//! subset).
+
+#![allow(dead_code)]
+
+use reparamc::fit::loss::Target;
+use reparamc::fit::{FitOptions, Parametric, fit};
+use reparamc::render::camera::{Camera, default_views};
+use reparamc::render::openscad::{self, OpenScadRender};
+use reparamc::render::{Backend, CpuBackend};
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+pub fn repo() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// A base model and one of its variants.
+#[derive(Debug, Clone)]
+pub struct Case {
+    pub model: String,
+    pub variant: String,
+    pub base: PathBuf,
+    pub target: PathBuf,
+}
+
+fn scad_in(dir: &Path) -> Vec<PathBuf> {
+    let mut v: Vec<PathBuf> = std::fs::read_dir(dir)
+        .map(|r| r.filter_map(|e| e.ok().map(|e| e.path())).collect())
+        .unwrap_or_default();
+    v.retain(|p| p.extension().is_some_and(|x| x == "scad"));
+    v.sort();
+    v
+}
+
+/// Every (model, variant): variants from `examples/variations/<model>/` where they exist,
+/// else from `tests/fixtures/variants/<model>/`.
+pub fn cases() -> Vec<Case> {
+    let root = repo();
+    let mut out = Vec::new();
+    let mut models: Vec<(String, PathBuf)> = Vec::new();
+    for p in scad_in(&root.join("examples")) {
+        models.push((p.file_stem().unwrap().to_string_lossy().into_owned(), p));
+    }
+    for p in scad_in(&root.join("examples/paper")) {
+        models.push((
+            format!("paper_{}", p.file_stem().unwrap().to_string_lossy()),
+            p,
+        ));
+    }
+    for (name, base) in models {
+        let mut variants = scad_in(&root.join("examples/variations").join(&name));
+        if variants.is_empty() {
+            variants = scad_in(&root.join("tests/fixtures/variants").join(&name));
+        }
+        for v in variants {
+            out.push(Case {
+                model: name.clone(),
+                variant: v.file_stem().unwrap().to_string_lossy().into_owned(),
+                base: base.clone(),
+                target: v,
+            });
+        }
+    }
+    out
+}
+
+pub fn load(path: &Path) -> reparamc::ir::Model {
+    let mut sources = reparamc::front::source::SourceMap::new();
+    reparamc::load_model(&mut sources, path)
+        .unwrap_or_else(|d| panic!("{}: {}", path.display(), d.message))
+        .model
+}
+
+/// Result of one case.
+#[derive(Debug, Clone)]
+pub struct Outcome {
+    pub case: Case,
+    pub iou_start: f64,
+    pub iou: f64,
+    pub loss_start: f64,
+    pub loss_end: f64,
+    pub seconds: f64,
+    pub steps: usize,
+}
+
+fn union_bounds(a: ([f64; 3], [f64; 3]), b: Option<([f64; 3], [f64; 3])>) -> ([f64; 3], [f64; 3]) {
+    match b {
+        None => a,
+        Some(b) => (
+            std::array::from_fn(|i| a.0[i].min(b.0[i])),
+            std::array::from_fn(|i| a.1[i].max(b.1[i])),
+        ),
+    }
+}
+
+/// The five cameras a case is seen from (framing the base and the variant).
+pub fn case_cameras(
+    base: &reparamc::ir::Model,
+    target: &reparamc::ir::Model,
+    size: u32,
+    views: usize,
+) -> Vec<Camera> {
+    let (lo, hi) = union_bounds(base.bounds().unwrap(), target.bounds());
+    default_views(lo, hi, views, size, size)
+}
+
+/// Renders the targets with OpenSCAD, fits, and scores the fit.
+pub fn run_case(
+    case: &Case,
+    opts: &FitOptions,
+    size: u32,
+    views: usize,
+    backend: &mut dyn Backend,
+) -> Outcome {
+    let base = load(&case.base);
+    let target = load(&case.target);
+    if base.slots.len() != target.slots.len() {
+        eprintln!(
+            "{}: variant has other slots ({} vs {})",
+            case.target.display(),
+            target.slots.len(),
+            base.slots.len()
+        );
+    }
+    let cams = case_cameras(&base, &target, size, views);
+    let targets: Vec<Target> = cams
+        .iter()
+        .map(|c| {
+            let img = openscad::render(&case.target, c, &OpenScadRender::default())
+                .unwrap_or_else(|e| panic!("{e}"));
+            Target::from_rgb(&img)
+        })
+        .collect();
+    let problem = Parametric::new(&base);
+    let warm = std::env::var("WARM")
+        .ok()
+        .map_or(opts.rounds / 2, |w| w.parse().unwrap());
+    let stages = reparamc::fit::staged(&base, opts.rounds, warm);
+    let t0 = Instant::now();
+    let result = fit(
+        &problem,
+        &cams,
+        &targets,
+        &stages,
+        backend,
+        opts,
+        &mut |_| {},
+    )
+    .unwrap_or_else(|e| panic!("{}: {e}", case.target.display()));
+    let seconds = t0.elapsed().as_secs_f64();
+    if std::env::var("SLOTS").is_ok() && base.slots.len() == target.slots.len() {
+        for (i, sl) in base.slots.iter().enumerate() {
+            let t = target.slots[i].value;
+            if (result.x[i] - t).abs() > 0.3 {
+                eprintln!(
+                    "  {:24} base {:8.2} fit {:8.2} target {:8.2}",
+                    sl.name, sl.value, result.x[i], t
+                );
+            }
+        }
+    }
+    if std::env::var("TRACE").is_ok() {
+        for st in result.curve.iter().step_by(10) {
+            eprintln!(
+                "  round {} it {} loss {:.5} sigma {:.2}",
+                st.round, st.iteration, st.loss, st.sigma
+            );
+        }
+    }
+    let iou_of = |x: &[f64]| {
+        let parts = base.parts_at(x).expect("affine parts");
+        reparamc::geom::iou((&parts, &base.csg), (&target.parts, &target.csg))
+    };
+    if let Ok(dir) = std::env::var("GALLERY") {
+        let mut imgs = Vec::new();
+        for (c, t) in cams.iter().zip(&targets) {
+            for x in [&problem.x0, &result.x] {
+                let scene = problem.scene(x);
+                let v = reparamc::render::soft::prepare_view(&scene, c, None);
+                let (s, _, _) = reparamc::render::soft::render_view(
+                    &scene,
+                    &v,
+                    Some(0.4),
+                    reparamc::render::scene::DEFAULT_SHADE,
+                    false,
+                );
+                imgs.push(reparamc::render::image::picture(&s));
+            }
+            let tm = reparamc::render::soft::SoftImage {
+                width: t.width,
+                height: t.height,
+                m: t.m.clone(),
+                s: t.s.clone(),
+            };
+            imgs.insert(imgs.len() - 1, reparamc::render::image::picture(&tm));
+        }
+        let g = reparamc::render::image::grid(&imgs, 3);
+        let path = PathBuf::from(dir).join(format!("{}_{}.png", case.model, case.variant));
+        std::fs::write(path, g.encode_png()).unwrap();
+    }
+    Outcome {
+        case: case.clone(),
+        iou_start: iou_of(&problem.x0),
+        iou: iou_of(&result.x),
+        loss_start: result.start_loss.iter().sum(),
+        loss_end: result.end_loss.iter().sum(),
+        seconds,
+        steps: result.curve.len(),
+    }
+}
+
+pub fn cpu() -> CpuBackend {
+    CpuBackend
+}
