@@ -129,6 +129,17 @@ struct Layer {
     item: u32,
     /// `h`: zero inside a hole of a boolean item.
     keep: f64,
+    /// The item's part states in the scratch.
+    states: (u32, u32),
+}
+
+/// Per-thread buffers reused from pixel to pixel.
+#[derive(Default)]
+struct Scratch {
+    layers: Vec<Layer>,
+    states: Vec<(u32, PartAt)>,
+    mb: Vec<f64>,
+    sb: Vec<f64>,
 }
 
 /// Per-part state at a pixel.
@@ -216,13 +227,25 @@ impl PixelCtx<'_> {
         (v, n)
     }
 
-    fn pixel(&self, px: u32, py: u32, entries: Option<&mut Vec<Entry>>) -> PixelOut {
+    fn pixel(
+        &self,
+        px: u32,
+        py: u32,
+        scratch: &mut Scratch,
+        entries: Option<&mut Vec<Entry>>,
+    ) -> PixelOut {
         let frame = &self.prep.frame;
         let u = [px as f64 + 0.5, py as f64 + 0.5];
         let ray = frame.ray(u[0], u[1]);
         let (o, d) = (ray.origin, ray.dir);
-        let mut layers: Vec<Layer> = Vec::new();
-        let mut states: Vec<(u32, PartAt)> = Vec::new();
+        let Scratch {
+            layers,
+            states,
+            mb,
+            sb,
+        } = scratch;
+        layers.clear();
+        states.clear();
         let mut best_hard: Option<(f64, i32, Vec3)> = None;
         for (idx, item) in self.scene.items.iter().enumerate() {
             let Some(r) = self.prep.rects[idx] else {
@@ -292,6 +315,7 @@ impl PixelCtx<'_> {
                 shade,
                 item: idx as u32,
                 keep,
+                states: (first_state as u32, states.len() as u32),
             });
         }
         // Front-to-back compositing.
@@ -300,15 +324,17 @@ impl PixelCtx<'_> {
         let mut m = 0.0;
         let mut s = 0.0;
         let mut t = 1.0;
-        for l in &layers {
+        for l in layers.iter() {
             s += t * l.alpha * l.shade;
             m += t * l.alpha;
             t *= 1.0 - l.alpha;
         }
         if let (Some(entries), Some(_)) = (entries, self.sigma) {
             // Composites of what lies behind each layer.
-            let mut mb = vec![0.0; n + 1];
-            let mut sb = vec![0.0; n + 1];
+            mb.clear();
+            mb.resize(n + 1, 0.0);
+            sb.clear();
+            sb.resize(n + 1, 0.0);
             for k in (0..n).rev() {
                 let l = &layers[k];
                 mb[k] = l.alpha + (1.0 - l.alpha) * mb[k + 1];
@@ -325,8 +351,9 @@ impl PixelCtx<'_> {
                     continue;
                 }
                 let item = &self.scene.items[l.item as usize];
-                for &(p, st) in &states {
-                    if !item.parts.contains(&(p as usize)) || !st.hull {
+                let mine = &states[l.states.0 as usize..l.states.1 as usize];
+                for &(p, st) in mine {
+                    if !st.hull {
                         continue;
                     }
                     if st.cov.n == 0 {
@@ -336,8 +363,7 @@ impl PixelCtx<'_> {
                         1.0
                     } else {
                         let get = |q: usize| {
-                            states
-                                .iter()
+                            mine.iter()
                                 .find(|(r, _)| *r as usize == q)
                                 .map_or(0.0, |x| x.1.alpha)
                         };
@@ -435,11 +461,13 @@ pub fn render_view(
         sigma,
         shade,
     };
-    // Rows touched by some item; other rows are background.
-    let mut row_used = vec![false; h as usize];
+    // The span of each row that some item touches; the rest is background.
+    let mut span = vec![(w, 0u32); h as usize];
     for r in prep.rects.iter().flatten() {
         for y in r[1]..r[3] {
-            row_used[y as usize] = true;
+            let sp = &mut span[y as usize];
+            sp.0 = sp.0.min(r[0]);
+            sp.1 = sp.1.max(r[2]);
         }
     }
     let rows: Vec<(
@@ -459,9 +487,11 @@ pub fn render_view(
             let mut normal = vec![[0.0f32; 3]; n];
             let mut depth = vec![f32::INFINITY; n];
             let mut entries = Vec::new();
-            if row_used[y as usize] {
-                for x in 0..w {
-                    let out = ctx.pixel(x, y, want_entries.then_some(&mut entries));
+            let mut scratch = Scratch::default();
+            let (x0, x1) = span[y as usize];
+            {
+                for x in x0..x1 {
+                    let out = ctx.pixel(x, y, &mut scratch, want_entries.then_some(&mut entries));
                     let i = x as usize;
                     m[i] = out.m as f32;
                     s[i] = out.s as f32;
