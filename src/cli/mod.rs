@@ -4,7 +4,9 @@
 //! helpers and the exit codes. Nothing here computes results: it calls the library.
 
 mod compile;
+mod fit;
 mod inspect;
+mod render;
 
 use clap::{Parser, Subcommand};
 use codespan_reporting::term::termcolor::{ColorChoice, StandardStream};
@@ -38,6 +40,10 @@ pub struct Cli {
 enum Command {
     /// Show a model's parameters, parts and the geometric relations that hold on it.
     Inspect(inspect::Args),
+    /// Render a model from named or explicit cameras (OpenSCAD's `--camera` conventions).
+    Render(render::Args),
+    /// Fit a model's numbers to pictures of what it should become.
+    Fit(fit::Args),
 }
 
 /// Runs the command line and returns the process exit code.
@@ -45,6 +51,8 @@ pub fn run() -> ExitCode {
     let cli = Cli::parse();
     match cli.command {
         Some(Command::Inspect(args)) => inspect::run(args),
+        Some(Command::Render(args)) => render::run(args),
+        Some(Command::Fit(args)) => fit::run(args),
         None => compile::run(cli.main),
     }
 }

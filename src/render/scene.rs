@@ -949,7 +949,7 @@ pub fn shade_features(n: Vec3) -> [f64; NSHADE] {
 }
 
 /// Default shading coefficients: faces of every orientation get different greys.
-pub const DEFAULT_SHADE: [f64; NSHADE] = [0.36, 0.1, 0.16, 0.04, 0.42];
+pub const DEFAULT_SHADE: [f64; NSHADE] = [0.45, -0.12, 0.3, 0.1, 0.15];
 
 /// The slot forms of a part's 15 parameters (`None` for a constant or a non-affine one).
 pub fn theta_forms(p: &Part) -> [Option<Affine>; NTHETA] {
