@@ -8,13 +8,13 @@
 //! - [`Shape::x_breaks`]: the x values where the set of y break points of a line changes:
 //!   tight x bounds, box corners, the x extremes of cap rims, the ends of a cone's contour
 //!   generators (where the silhouette leaves a rim), apexes.
-//! - [`Shape::y_breaks`]: for one x, the y values where `f` is not smooth along the line:
+//! - [`Shape::line_breaks`]: for one x, the y values where `f` is not smooth along the line:
 //!   bounds, edge crossings of a rotated box, rim crossings and silhouette points (roots of
-//!   the discriminant of the ray–quadric equation, a quadratic in y).
+//!   the discriminant of the ray–quadric equation, a quadratic in y). The same curves cut
+//!   with a line of constant y give the x values where the shape's footprint crosses the
+//!   side of an integration cell, which are x breaks of that cell.
 //!
-//! Break points are candidates: extra ones cost a little time, never accuracy. Each y break
-//! carries a tag (shape index × 16 + which break) so a line's structure can be compared
-//! between two x values.
+//! Break points are candidates: extra ones cost a little time, never accuracy.
 
 use super::shape::{Kind, Shape, roots};
 
@@ -79,51 +79,60 @@ impl Shape {
         }
     }
 
-    /// Pushes `(y, tag)` for every candidate break of the vertical lines at this `x`.
-    pub fn y_breaks(&self, x: f64, tag: u32, out: &mut Vec<(f64, u32)>) {
-        let tag = tag * 16;
-        out.extend([(self.lo[1], tag), (self.hi[1], tag + 1)]);
+    /// Pushes every candidate break, as values of world coordinate `1 − u`, of the
+    /// vertical lines on the line `{coordinate u = c}` of the plane (`u = 0`: the line at
+    /// x = c, breaks are y values; `u = 1`: the line at y = c, breaks are x values).
+    pub fn line_breaks(&self, u: usize, c: f64, out: &mut Vec<f64>) {
+        let v = 1 - u;
+        out.extend([self.lo[v], self.hi[v]]);
         match self.kind {
             Kind::Box { .. } if self.aligned => {}
             Kind::Box { .. } => {
-                for (e, &(i, j)) in EDGES.iter().enumerate() {
+                for &(i, j) in &EDGES {
                     let (a, b) = (self.corners[i], self.corners[j]);
-                    if (a[0] - x) * (b[0] - x) < 0.0 {
-                        let y = a[1] + (x - a[0]) / (b[0] - a[0]) * (b[1] - a[1]);
-                        out.push((y, tag + 2 + e as u32));
+                    if (a[u] - c) * (b[u] - c) < 0.0 {
+                        out.push(a[v] + (c - a[u]) / (b[u] - a[u]) * (b[v] - a[v]));
                     }
                 }
             }
             Kind::Frustum { .. } => {
-                for (n, (z, r)) in caps(&self.kind).into_iter().enumerate() {
-                    self.rim_crossings(x, z, r, tag + 2 + 2 * n as u32, out);
+                for (z, r) in caps(&self.kind) {
+                    self.rim_crossings(u, c, z, r, out);
                 }
-                self.silhouette(x, tag + 6, out);
+                self.silhouette(u, c, out);
             }
-            Kind::Sphere { .. } => self.silhouette(x, tag + 6, out),
+            Kind::Sphere { .. } => self.silhouette(u, c, out),
         }
     }
 
-    /// Where the rim of the cap at `z` crosses the plane at `x`, as world y values.
-    fn rim_crossings(&self, x: f64, z: f64, r: f64, tag: u32, out: &mut Vec<(f64, u32)>) {
-        let c = self.world([0.0, 0.0, z]);
-        let (a, b) = (r * self.m[0][0], r * self.m[0][1]);
+    /// Where the rim of the cap at `z` crosses the line `{coordinate u = c}`, as values of
+    /// the other coordinate.
+    fn rim_crossings(&self, u: usize, c: f64, z: f64, r: f64, out: &mut Vec<f64>) {
+        let centre = self.world([0.0, 0.0, z]);
+        let (a, b) = (r * self.m[u][0], r * self.m[u][1]);
         let reach = a.hypot(b);
-        if !(reach > 0.0) || (x - c[0]).abs() > reach {
+        if !(reach > 0.0) || (c - centre[u]).abs() > reach {
             return;
         }
-        let (phi, delta) = (b.atan2(a), ((x - c[0]) / reach).clamp(-1.0, 1.0).acos());
-        for (i, th) in [phi - delta, phi + delta].into_iter().enumerate() {
-            out.push((self.rim_point(z, r, th)[1], tag + i as u32));
+        let (phi, delta) = (
+            b.atan2(a),
+            ((c - centre[u]) / reach).clamp(-1.0, 1.0).acos(),
+        );
+        for th in [phi - delta, phi + delta] {
+            out.push(self.rim_point(z, r, th)[1 - u]);
         }
     }
 
-    /// Where vertical lines at this `x` are tangent to the shape's quadric (the silhouette
-    /// of the sphere, or of the infinite cone or cylinder that carries a frustum's side).
-    fn silhouette(&self, x: f64, tag: u32, out: &mut Vec<(f64, u32)>) {
-        let yc = 0.5 * (self.lo[1] + self.hi[1]);
-        let (p, d) = self.vertical_local(x, yc);
-        let e = [self.inv[0][1], self.inv[1][1], self.inv[2][1]];
+    /// Where vertical lines on the line `{coordinate u = c}` are tangent to the shape's
+    /// quadric (the silhouette of the sphere, or of the infinite cone or cylinder that
+    /// carries a frustum's side).
+    fn silhouette(&self, u: usize, c: f64, out: &mut Vec<f64>) {
+        let v = 1 - u;
+        let mid = 0.5 * (self.lo[v] + self.hi[v]);
+        let mut at = [0.0; 2];
+        (at[u], at[v]) = (c, mid);
+        let (p, d) = self.vertical_local(at[0], at[1]);
+        let e = [self.inv[0][v], self.inv[1][v], self.inv[2][v]];
         // Along the line (origin p + η e, direction d) the quadric is a2 s² + 2 b s + c with
         // b = b0 + b1 η and c = c0 + c1 η + c2 η²; it touches where b² − a2 c = 0.
         let (a2, b0, b1, c0, c1, c2) = match self.kind {
@@ -154,18 +163,8 @@ impl Shape {
         let qa = b1 * b1 - a2 * c2;
         let qb = 2.0 * b0 * b1 - a2 * c1;
         let qc = b0 * b0 - a2 * c0;
-        // Noise-level coefficients (a line parallel to a cylinder's axis) give no break.
-        let size = qa.abs().max(qb.abs()).max(qc.abs());
-        if !(size > 0.0) {
-            return;
-        }
         if let Some((r0, r1)) = roots(qa, qb, qc) {
-            for (i, r) in [r0, r1].into_iter().enumerate() {
-                let y = yc + r;
-                if y.is_finite() {
-                    out.push((y, tag + i as u32));
-                }
-            }
+            out.extend([mid + r0, mid + r1].into_iter().filter(|y| y.is_finite()));
         }
     }
 }

@@ -52,9 +52,9 @@ struct Integrator<'a> {
     area_tol: Tol,
     mask: Vec<bool>,
     ivs: Vec<Iv>,
-    ybreaks: Vec<(f64, u32)>,
-    inner_sigs: Vec<u64>,
-    outer_sigs: Vec<u64>,
+    ybreaks: Vec<f64>,
+    /// Kinds of stretch met by the current line's rays.
+    kinds: Vec<u64>,
 }
 
 /// `(|A|, |B|, |A ∩ B|)` inside the job's region.
@@ -96,8 +96,7 @@ pub(crate) fn integrate(job: &Job) -> V3 {
         mask: vec![false; job.shapes.len()],
         ivs: Vec::new(),
         ybreaks: Vec::new(),
-        inner_sigs: Vec::new(),
-        outer_sigs: Vec::new(),
+        kinds: Vec::new(),
     };
     let progs = it.restrict(job.programs, &ids);
     let rect = Rect {
@@ -187,7 +186,17 @@ impl Integrator<'_> {
     /// `∫∫ f` over a leaf cell, strip by strip.
     fn leaf(&mut self, r: Rect, ids: &[u32], progs: [&Program; 2]) -> V3 {
         let mut xs = vec![r.lo[0], r.hi[0]];
-        ids.iter().for_each(|&i| self.shape(i).x_breaks(&mut xs));
+        for &i in ids {
+            let s = self.shape(i);
+            s.x_breaks(&mut xs);
+            // Where a footprint's boundary crosses the cell's lower or upper side, the
+            // integral over the cell has a kink.
+            for side in r.lo[1..].iter().chain(&r.hi[1..]) {
+                if !s.aligned && s.lo[1] < *side && *side < s.hi[1] {
+                    s.line_breaks(1, *side, &mut xs);
+                }
+            }
+        }
         xs.retain(|&x| x >= r.lo[0] && x <= r.hi[0]);
         xs.sort_unstable_by(f64::total_cmp);
         // Breaks closer than rounding noise (a cos 90° of 6e-17) would only make slivers.
@@ -208,63 +217,62 @@ impl Integrator<'_> {
             if strip.is_empty() {
                 continue;
             }
-            let part = if strip.iter().all(|&i| self.shape(i).aligned) {
-                quad::scale(self.line(0.5 * (xa + xb), &r, &strip, progs).0, xb - xa)
+            // Rays test only the strip's shapes.
+            let pruned = (strip.len() < ids.len()).then(|| self.restrict(progs, &strip));
+            let progs = match &pruned {
+                Some([a, b]) => [a, b],
+                None => progs,
+            };
+            // Extrusions along x (aligned boxes among them) look the same on every line.
+            let part = if strip.iter().all(|&i| self.shape(i).prism[0]) {
+                quad::scale(
+                    self.line(0.5 * (xa + xb), &r, &strip, progs, false).0,
+                    xb - xa,
+                )
             } else {
                 let tol = self.area_tol;
-                let mut sigs = std::mem::take(&mut self.outer_sigs);
-                sigs.clear();
-                let mut g = |x: f64| self.line(x, &r, &strip, progs);
-                let v = quad::integrate(&mut g, xa, xb, &tol, &mut sigs);
-                self.outer_sigs = sigs;
-                v
+                let mut g = |x: f64| self.line(x, &r, &strip, progs, true);
+                quad::integrate(&mut g, xa, xb, &tol)
             };
             total = quad::add(total, part);
         }
         total
     }
 
-    /// `∫ f(x, y) dy` across the cell, with a signature of the line's structure.
-    fn line(&mut self, x: f64, r: &Rect, ids: &[u32], progs: [&Program; 2]) -> (V3, u64) {
-        LINES.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-        if std::env::var("QDBG").is_ok() {
-            eprintln!("LINE {x}");
-        }
+    /// `∫ f(x, y) dy` across the cell, with a signature of the line's structure when
+    /// `structure` is set (else 0).
+    fn line(
+        &mut self,
+        x: f64,
+        r: &Rect,
+        ids: &[u32],
+        progs: [&Program; 2],
+        structure: bool,
+    ) -> (V3, u64) {
         let mut ys = std::mem::take(&mut self.ybreaks);
         ys.clear();
-        ys.extend([(r.lo[1], u32::MAX - 1), (r.hi[1], u32::MAX)]);
+        ys.extend([r.lo[1], r.hi[1]]);
         for &i in ids {
             let s = self.shape(i);
             if x >= s.lo[0] && x <= s.hi[0] {
-                s.y_breaks(x, i, &mut ys);
+                s.line_breaks(0, x, &mut ys);
             }
         }
-        // Breaks beyond the cell are clamped to its sides (not dropped), so the list of
-        // tags only changes where breaks really cross each other.
-        ys.iter_mut()
-            .for_each(|b| b.0 = b.0.clamp(r.lo[1], r.hi[1]));
-        ys.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-        // The line's structure: the order of its break points (before merging equal ones, so
-        // that two breaks meeting at one x do not look like a change) except bounds, which
-        // are not breaks of a curved shape and never move for an aligned one.
-        let mut h = Hasher::new();
-        ys.iter()
-            .filter(|&&(_, tag)| tag < u32::MAX - 1 && tag % 16 > 1)
-            .for_each(|&(_, tag)| h.add(u64::from(tag)));
-        h.add(u64::MAX);
-        ys.dedup_by(|b, a| a.0 == b.0);
-        let mut sigs = std::mem::take(&mut self.inner_sigs);
-        sigs.clear();
+        ys.retain(|&y| y >= r.lo[1] && y <= r.hi[1]);
+        ys.sort_unstable_by(f64::total_cmp);
+        ys.dedup();
+        self.kinds.clear();
         let mut total = [0.0; 3];
         for k in 0..ys.len().saturating_sub(1) {
-            let (ya, yb) = (ys[k].0, ys[k + 1].0);
-            let (mut live, mut curved) = (false, false);
+            let (ya, yb) = (ys[k], ys[k + 1]);
+            // Extrusions along y or z (aligned boxes among them) are constant along a segment.
+            let (mut live, mut varying) = (false, false);
             for &i in ids {
                 let s = self.shape(i);
                 if x >= s.lo[0] && x <= s.hi[0] && s.lo[1] < yb && s.hi[1] > ya {
                     live = true;
-                    if !s.aligned {
-                        curved = true;
+                    if !(s.prism[1] || s.prism[2]) {
+                        varying = true;
                         break;
                     }
                 }
@@ -272,34 +280,41 @@ impl Integrator<'_> {
             if !live {
                 continue;
             }
-            let part = if curved {
+            let part = if varying {
                 let tol = self.line_tol;
-                let mut f = |y: f64| self.sample(x, y, progs);
-                quad::integrate(&mut f, ya, yb, &tol, &mut sigs)
+                let mut f = |y: f64| self.sample(x, y, progs, true, structure);
+                quad::integrate(&mut f, ya, yb, &tol)
             } else {
-                let (v, s) = self.sample(x, 0.5 * (ya + yb), progs);
-                sigs.push(s);
-                quad::scale(v, yb - ya)
+                let mid = 0.5 * (ya + yb);
+                quad::scale(self.sample(x, mid, progs, false, structure).0, yb - ya)
             };
             total = quad::add(total, part);
         }
-        // ... and the structures met along it, in order, not counting empty stretches.
-        let empty = signature(&[], &[], self.z.0, self.z.1);
-        let mut last = empty;
-        for &s in sigs.iter().filter(|&&s| s != empty) {
-            if s != last {
-                h.add(s);
-                last = s;
-            }
-        }
         self.ybreaks = ys;
-        self.inner_sigs = sigs;
+        if !structure {
+            return (total, 0);
+        }
+        // The line's structure: which kinds of stretch it met (see `push_kinds`), as a set.
+        let mut kinds = std::mem::take(&mut self.kinds);
+        kinds.sort_unstable();
+        kinds.dedup();
+        let mut h = Hasher::new();
+        kinds.iter().for_each(|&k| h.add(k));
+        kinds.clear();
+        self.kinds = kinds;
         (total, h.finish())
     }
 
-    /// `f(x, y)` for both solids, and the signature of the line's structure.
-    fn sample(&mut self, x: f64, y: f64, progs: [&Program; 2]) -> (V3, u64) {
-        SAMPLES.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    /// `f(x, y)` for both solids; with `sig`, the signature of the ray's structure (else 0);
+    /// with `kinds`, the kinds of its stretches are collected for the line.
+    fn sample(
+        &mut self,
+        x: f64,
+        y: f64,
+        progs: [&Program; 2],
+        sig: bool,
+        kinds: bool,
+    ) -> (V3, u64) {
         let shapes = self.shapes;
         let buf = &mut self.ivs;
         buf.clear();
@@ -329,7 +344,10 @@ impl Integrator<'_> {
             clipped_len(b, z0, z1),
             clipped_common_len(a, b, z0, z1),
         ];
-        (v, signature(a, b, z0, z1))
+        if kinds {
+            push_kinds(a, b, z0, z1, &mut self.kinds);
+        }
+        (v, if sig { signature(a, b, z0, z1) } else { 0 })
     }
 }
 
@@ -349,12 +367,65 @@ impl Hasher {
     }
 }
 
+/// Pushes the kind of every stretch along a ray: each interval of A, of B and of A ∩ B,
+/// clipped to `[z0, z1]`, named by the surfaces (or clip planes) at its ends.
+///
+/// A line's set of kinds changes with x where the integral along it stops being smooth in
+/// x: where two shapes that overlap in z start or stop meeting on it (a rail entering a leg),
+/// where a difference starts to cut. Breaks of unrelated shapes crossing each other (a leg's
+/// rim passing the edge of a back high above it) change the order of stretches along the
+/// line but not this set, so they cost nothing.
+fn push_kinds(a: &[Iv], b: &[Iv], z0: f64, z1: f64, out: &mut Vec<u64>) {
+    let surf = |s: Surf| u64::from(s.shape) << 8 | u64::from(s.face) << 1 | u64::from(s.flip);
+    let mut push = |list: u64, iv: &Iv| {
+        if iv.t1.min(z1) > iv.t0.max(z0) {
+            let e0 = if iv.t0 < z0 {
+                u64::MAX >> 8
+            } else {
+                surf(iv.s0)
+            };
+            let e1 = if iv.t1 > z1 {
+                u64::MAX >> 8
+            } else {
+                surf(iv.s1)
+            };
+            let mut h = Hasher::new();
+            [list, e0, e1].into_iter().for_each(|t| h.add(t));
+            out.push(h.finish());
+        }
+    };
+    a.iter().for_each(|iv| push(0, iv));
+    b.iter().for_each(|iv| push(1, iv));
+    let (mut i, mut j) = (0, 0);
+    while i < a.len() && j < b.len() {
+        let (x, y) = (&a[i], &b[j]);
+        let (t0, s0) = if x.t0 >= y.t0 {
+            (x.t0, x.s0)
+        } else {
+            (y.t0, y.s0)
+        };
+        let (t1, s1) = if x.t1 <= y.t1 {
+            (x.t1, x.s1)
+        } else {
+            (y.t1, y.s1)
+        };
+        if t0 < t1 {
+            push(2, &Iv { t0, t1, s0, s1 });
+        }
+        if x.t1 < y.t1 {
+            i += 1;
+        } else {
+            j += 1;
+        }
+    }
+}
+
 /// The end points of both lists and the clip planes, merged in order along the line, each
 /// named by its list, surface and side: equal signatures mean the same formula for `f`.
 fn signature(a: &[Iv], b: &[Iv], z0: f64, z1: f64) -> u64 {
     let end = |v: &[Iv], k: usize| -> (f64, u64) {
         let iv = &v[k / 2];
-        let (t, s) = if k % 2 == 0 {
+        let (t, s) = if k.is_multiple_of(2) {
             (iv.t0, iv.s0)
         } else {
             (iv.t1, iv.s1)
@@ -388,6 +459,3 @@ fn signature(a: &[Iv], b: &[Iv], z0: f64, z1: f64) -> u64 {
     }
     h.finish()
 }
-
-pub(crate) static SAMPLES: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
-pub(crate) static LINES: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);

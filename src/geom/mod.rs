@@ -31,6 +31,9 @@
 //! infinite parts are empty solids, and parts the tree refers to but that do not exist
 //! are empty too.
 
+// Negated comparisons are how this module treats NaN as "no": `!(a < b)` holds for NaN.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
+
 mod aabb;
 mod breaks;
 mod csg;

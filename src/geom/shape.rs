@@ -11,7 +11,11 @@
 //! entries and singular matrices make [`Shape::new`] return `None` (the part is empty).
 //! A [`Hit`] always has `t0 < t1` and finite ends. `aligned` is true exactly for boxes whose
 //! `L` is a scaled signed permutation: their footprint is their bounding rectangle and the
-//! stretch a vertical ray spends inside them is the same everywhere over it.
+//! stretch a vertical ray spends inside them is the same everywhere over it. `prism[a]` is
+//! true when the shape is an extrusion along world axis `a` with caps perpendicular to it
+//! (a box with an edge along `a`, a cylinder whose axis is `a`): then the length of a
+//! vertical line inside it does not change when the line moves along `a` (for `a = z`: it is
+//! constant over the footprint).
 
 use crate::ir::{Part, Primitive};
 
@@ -62,6 +66,10 @@ pub(crate) struct Shape {
     pub lo: [f64; 3],
     pub hi: [f64; 3],
     pub aligned: bool,
+    pub prism: [bool; 3],
+    /// For a prism along z: the local axis along world z, and the stretch every vertical
+    /// line through its footprint spends inside it.
+    z_prism: Option<(usize, Hit)>,
     /// World corners of a box (unused for other kinds).
     pub corners: [[f64; 3]; 8],
 }
@@ -165,12 +173,62 @@ impl Shape {
             lo: [0.0; 3],
             hi: [0.0; 3],
             aligned: false,
+            prism: [false; 3],
+            z_prism: None,
             corners: [[0.0; 3]; 8],
         };
         s.set_bounds();
         s.aligned = matches!(kind, Kind::Box { .. }) && is_signed_permutation(&m);
+        s.prism = std::array::from_fn(|a| s.is_prism_along(a));
+        s.z_prism = s.prism[2].then(|| s.vertical_stretch()).flatten();
         let ok = (0..3).all(|a| s.lo[a].is_finite() && s.hi[a].is_finite() && s.lo[a] < s.hi[a]);
         ok.then_some(s)
+    }
+
+    /// True when world axis `a` is a local axis `u` of the primitive (a box's any, a
+    /// cylinder's z) and the other local axes are perpendicular to it: `L⁻¹` has a single
+    /// non-negligible entry in column `a`, at row `u`, and none elsewhere in row `u`.
+    fn is_prism_along(&self, a: usize) -> bool {
+        let inv = &self.inv;
+        let norm = inv.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
+        let big = |i: usize, j: usize| inv[i][j].abs() > 1e-12 * norm;
+        let Some(u) = (0..3).find(|&i| big(i, a)) else {
+            return false;
+        };
+        let cross = (0..3).all(|i| i == u || !big(i, a)) && (0..3).all(|j| j == a || !big(u, j));
+        match self.kind {
+            Kind::Box { .. } => cross,
+            Kind::Frustum { k, .. } => cross && u == 2 && k == 0.0,
+            Kind::Sphere { .. } => false,
+        }
+    }
+
+    /// The local axis along world z of a prism along z, and its stretch on vertical lines.
+    fn vertical_stretch(&self) -> Option<(usize, Hit)> {
+        let u = match self.kind {
+            Kind::Box { .. } => {
+                (0..3).max_by(|&i, &j| self.inv[i][2].abs().total_cmp(&self.inv[j][2].abs()))?
+            }
+            _ => 2,
+        };
+        let (low, high) = match self.kind {
+            Kind::Box { .. } => (2 * u as u8, 2 * u as u8 + 1),
+            _ => (BOTTOM, TOP),
+        };
+        let (f0, f1) = if self.inv[u][2] > 0.0 {
+            (low, high)
+        } else {
+            (high, low)
+        };
+        Some((
+            u,
+            Hit {
+                t0: self.lo[2],
+                t1: self.hi[2],
+                f0,
+                f1,
+            },
+        ))
     }
 
     /// The world image of a local point.
@@ -227,8 +285,23 @@ impl Shape {
         if !(x >= self.lo[0] && x <= self.hi[0] && y >= self.lo[1] && y <= self.hi[1]) {
             return None;
         }
+        if let Some((u, hit)) = self.z_prism {
+            return self.in_cross_section(u, x, y).then_some(hit);
+        }
         let (o, d) = self.vertical_local(x, y);
         self.hit_local(o, d)
+    }
+
+    /// Whether the vertical line through `(x, y)` meets a prism along z (local axis `u`).
+    fn in_cross_section(&self, u: usize, x: f64, y: f64) -> bool {
+        let local = |j: usize| self.inv_o[j] + self.inv[j][0] * x + self.inv[j][1] * y;
+        match self.kind {
+            Kind::Box { lo, hi } => (0..3)
+                .filter(|&j| j != u)
+                .all(|j| (lo[j]..=hi[j]).contains(&local(j))),
+            Kind::Frustum { r, .. } => local(0).powi(2) + local(1).powi(2) <= r[0] * r[0],
+            Kind::Sphere { .. } => false,
+        }
     }
 
     /// Where the world line `o + t·d` is inside the shape.
@@ -294,7 +367,7 @@ impl Shape {
         let g = match self.kind {
             Kind::Box { .. } => {
                 let mut g = [0.0; 3];
-                g[(face / 2) as usize % 3] = if face % 2 == 0 { -1.0 } else { 1.0 };
+                g[(face / 2) as usize % 3] = if face.is_multiple_of(2) { -1.0 } else { 1.0 };
                 g
             }
             Kind::Frustum { k, alpha, .. } => match face {
