@@ -5,7 +5,7 @@
 //! projected variations as presets → the emitted file. Every decision is recorded in the
 //! [`Report`].
 
-use crate::analysis::candidates::Candidate;
+use crate::analysis::candidates::{Candidate, Candidates};
 use crate::analysis::cutoff::{Cutoff, cutoff};
 use crate::analysis::discover::{Sample, Similarity, discover};
 use crate::analysis::names::name_free_variables;
@@ -156,7 +156,8 @@ pub struct Compiled {
     /// OpenSCAD parameter sets (`<name>.json`), when there are variations.
     pub presets: Option<String>,
     pub report: Report,
-    /// The kept constraints and the solved system, for tests and tools.
+    /// Every candidate of the model, and the kept ones, for tests and tools.
+    pub candidates: Candidates,
     pub kept: Vec<Candidate>,
     pub solution: Solution,
     /// Slot values of each variation projected onto the kept constraints and anchors.
@@ -227,6 +228,26 @@ pub fn format_expression(e: &Expression, names: &[String]) -> String {
     if number(c) != "0" {
         out.push_str(if c < 0.0 { " - " } else { " + " });
         out.push_str(&number(c.abs()));
+    }
+    out
+}
+
+/// For each slot, the parts whose geometry depends on it.
+fn slot_parts(model: &Model) -> Vec<Vec<usize>> {
+    let mut out = vec![Vec::new(); model.slots.len()];
+    for (i, p) in model.parts.iter().enumerate() {
+        let nums = p.world.m.iter().flatten().chain(match &p.primitive {
+            crate::ir::Primitive::Cube { size, .. } => size.iter().collect::<Vec<_>>(),
+            crate::ir::Primitive::Cylinder { h, r1, r2, .. } => vec![h, r1, r2],
+            crate::ir::Primitive::Sphere { r } => vec![r],
+        });
+        for n in nums {
+            for s in n.deps() {
+                if !out[s as usize].contains(&i) {
+                    out[s as usize].push(i);
+                }
+            }
+        }
     }
     out
 }
@@ -343,8 +364,26 @@ pub fn reparameterize(
     let candidates = find_candidates(model);
     let faces = Faces::of(model);
     let sim = VolumeSimilarity { model };
-    let values: Vec<Vec<f64>> = variations.iter().map(|v| v.values.clone()).collect();
-    let optional = optional_parts(model.parts.len(), &values, &sim);
+    let raw: Vec<Vec<f64>> = variations.iter().map(|v| v.values.clone()).collect();
+    let optional = optional_parts(model.parts.len(), &raw, &sim);
+    // A part a variation does without keeps the model's own shape there, so presets and
+    // blends never shrink it to nothing (its switch hides it instead).
+    let x0 = model.slot_values();
+    let owners = slot_parts(model);
+    let values: Vec<Vec<f64>> = raw
+        .iter()
+        .zip(&optional)
+        .map(|(v, skip)| {
+            v.iter()
+                .enumerate()
+                .map(|(s, &val)| {
+                    let only_skipped =
+                        !owners[s].is_empty() && owners[s].iter().all(|p| skip.contains(p));
+                    if only_skipped { x0[s] } else { val }
+                })
+                .collect()
+        })
+        .collect();
     let toggle_groups = toggles(model.parts.len(), &optional);
     let (kept_idx, method, chosen_text, cut, curve) = if variations.is_empty() {
         let kept: Vec<usize> = if options.all_constraints {
@@ -404,7 +443,6 @@ pub fn reparameterize(
             project_onto(&faces, v, &all_rows, o)
         })
         .collect();
-    let x0 = model.slot_values();
     let free_at =
         |x: &[f64]| -> Vec<f64> { solution.free.iter().map(|&f| x[f as usize]).collect() };
     let input_free = free_at(&x0);
@@ -541,7 +579,7 @@ pub fn reparameterize(
     let report = Report {
         model: sources.path(loaded.main).display().to_string(),
         parameter_count: d,
-        base_constraint_count: candidates.list.len(),
+        base_constraint_count: candidates.total(),
         method,
         chosen: chosen_text,
         kept_count: kept.len(),
@@ -577,6 +615,7 @@ pub fn reparameterize(
         scad,
         presets,
         report,
+        candidates,
         kept,
         solution,
         projected,

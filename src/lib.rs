@@ -24,21 +24,34 @@ use std::path::Path;
 /// need more than a default thread stack.
 const EVAL_STACK_BYTES: usize = 1 << 30;
 
-/// Runs `f` on a thread with a large stack and returns its result.
+/// Runs `f` on a thread with a large stack and returns its result. Where the system will
+/// not give a thread that much, smaller stacks are tried, and at last the current thread.
 pub fn with_large_stack<T: Send>(f: impl FnOnce() -> T + Send) -> T {
-    std::thread::scope(|s| {
-        let handle = std::thread::Builder::new()
-            .name("reparamc-eval".into())
-            .stack_size(EVAL_STACK_BYTES)
-            .spawn_scoped(s, f);
-        match handle {
-            Ok(h) => match h.join() {
+    let mut f = Some(f);
+    for size in [
+        EVAL_STACK_BYTES,
+        EVAL_STACK_BYTES / 8,
+        EVAL_STACK_BYTES / 64,
+    ] {
+        let outcome = std::thread::scope(|s| {
+            let g = &mut f;
+            let spawned = std::thread::Builder::new()
+                .name("reparamc-eval".into())
+                .stack_size(size)
+                .spawn_scoped(s, move || g.take().map(|f| f()));
+            spawned.ok().map(|h| match h.join() {
                 Ok(v) => v,
                 Err(panic) => std::panic::resume_unwind(panic),
-            },
-            Err(e) => panic!("cannot start the evaluation thread: {e}"),
+            })
+        });
+        if let Some(Some(v)) = outcome {
+            return v;
         }
-    })
+    }
+    match f.take() {
+        Some(f) => f(),
+        None => unreachable!("the closure runs at most once"),
+    }
 }
 
 /// Reads, parses and evaluates the model at `path` (and what it includes).

@@ -19,7 +19,7 @@ fn counts(name: &str) -> (usize, usize, usize) {
     let rows: Vec<_> = c.list.iter().flat_map(|c| c.rows.iter()).collect();
     (
         model.slots.len(),
-        c.list.len(),
+        c.total(),
         linalg::nullity(&rows, model.slots.len()),
     )
 }

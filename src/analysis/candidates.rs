@@ -60,36 +60,77 @@ pub struct AffineFeature {
 }
 
 /// One relation between two features: `rows[i] = a_i − b_i = 0`.
+///
+/// Features with identical affine forms (the legs of one module, the instances of a loop)
+/// form a class; a relation between two classes stands for every pair of their members,
+/// all with the same rows, so it is stored once with its `multiplicity`.
 #[derive(Debug, Clone)]
 pub struct Candidate {
     pub kind: RelationKind,
     pub a: usize,
     pub b: usize,
     pub rows: Vec<Affine>,
+    pub multiplicity: usize,
 }
 
 /// Every candidate of a model, with the features they speak of.
 #[derive(Debug, Clone)]
 pub struct Candidates {
+    /// Representatives of the feature classes.
     pub features: Vec<AffineFeature>,
+    /// How many features each representative stands for.
+    pub class_sizes: Vec<usize>,
     pub list: Vec<Candidate>,
+    /// Pairs inside one class, per kind: they hold for every setting (same forms), so they
+    /// are counted but constrain nothing.
+    pub identical: std::collections::BTreeMap<RelationKind, usize>,
     pub tolerance: Tolerance,
 }
 
 impl Candidates {
     /// "seat.bottom is coplanar with left_front_leg.top"
     pub fn describe(&self, c: &Candidate) -> String {
+        let more = if c.multiplicity > 1 {
+            format!(" (and {} more pairs like it)", c.multiplicity - 1)
+        } else {
+            String::new()
+        };
         format!(
-            "{} {} {}",
+            "{} {} {}{more}",
             self.features[c.a].label,
             c.kind.verb(),
             self.features[c.b].label
         )
     }
 
+    /// Candidates of one kind, counting every pair (the paper's count).
     pub fn count(&self, kind: RelationKind) -> usize {
-        self.list.iter().filter(|c| c.kind == kind).count()
+        self.list
+            .iter()
+            .filter(|c| c.kind == kind)
+            .map(|c| c.multiplicity)
+            .sum::<usize>()
+            + self.identical.get(&kind).copied().unwrap_or(0)
     }
+
+    /// The paper's "base constraints": every holding pair, redundant or not.
+    pub fn total(&self) -> usize {
+        RelationKind::ALL.iter().map(|&k| self.count(k)).sum()
+    }
+}
+
+/// An exact key for an affine form (bit patterns of its numbers).
+fn form_key(forms: &[Affine]) -> Vec<u64> {
+    let mut k = Vec::new();
+    for f in forms {
+        k.push(f.constant.to_bits());
+        k.push(f.terms.len() as u64);
+        for &(s, a) in &f.terms {
+            k.push(u64::from(s));
+            k.push(a.to_bits());
+        }
+    }
+    k
 }
 
 /// The model's features whose numbers are all affine.
@@ -123,10 +164,30 @@ fn relation_of(kind: FeatureKind) -> (RelationKind, u8) {
 /// Finds every candidate that holds on the model.
 pub fn find_candidates(model: &Model) -> Candidates {
     let tolerance = Tolerance::for_size(model.size());
-    let features = affine_features(model);
+    let all = affine_features(model);
+    // Classes of identical features (same relation group, same forms).
+    let mut class_of: std::collections::HashMap<((RelationKind, u8), Vec<u64>), usize> =
+        Default::default();
+    let mut features: Vec<AffineFeature> = Vec::new();
+    let mut class_sizes: Vec<usize> = Vec::new();
+    for f in all {
+        let key = (relation_of(f.kind), form_key(&f.forms));
+        match class_of.get(&key) {
+            Some(&i) => class_sizes[i] += 1,
+            None => {
+                class_of.insert(key, features.len());
+                features.push(f);
+                class_sizes.push(1);
+            }
+        }
+    }
+    let mut identical: std::collections::BTreeMap<RelationKind, usize> = Default::default();
     let mut groups: std::collections::BTreeMap<(RelationKind, u8), Vec<usize>> = Default::default();
     for (i, f) in features.iter().enumerate() {
-        groups.entry(relation_of(f.kind)).or_default().push(i);
+        let (kind, g) = relation_of(f.kind);
+        let k = class_sizes[i];
+        *identical.entry(kind).or_insert(0) += k * (k - 1) / 2;
+        groups.entry((kind, g)).or_default().push(i);
     }
     let mut list = Vec::new();
     for ((kind, _), mut members) in groups {
@@ -151,15 +212,25 @@ pub fn find_candidates(model: &Model) -> Candidates {
                         .zip(&features[b].forms)
                         .map(|(p, q)| p.sub(q))
                         .collect();
-                    list.push(Candidate { kind, a, b, rows });
+                    let multiplicity = class_sizes[a] * class_sizes[b];
+                    list.push(Candidate {
+                        kind,
+                        a,
+                        b,
+                        rows,
+                        multiplicity,
+                    });
                 }
             }
         }
     }
     list.sort_by_key(|c| (c.kind, c.a, c.b));
+    identical.retain(|_, n| *n > 0);
     Candidates {
         features,
+        class_sizes,
         list,
+        identical,
         tolerance,
     }
 }

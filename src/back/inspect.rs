@@ -80,6 +80,9 @@ pub struct Inspection {
     pub parameter_count: usize,
     pub base_constraint_count: usize,
     pub constraint_counts: std::collections::BTreeMap<RelationKind, usize>,
+    /// Pairs of features driven by the very same numbers (instances of one module or loop
+    /// body): counted above, but they hold for every setting and are not listed.
+    pub identical_by_construction: usize,
     pub tolerance: f64,
     pub slots: Vec<SlotRow>,
     pub parts: Vec<PartRow>,
@@ -161,11 +164,12 @@ pub fn inspect(sources: &SourceMap, model: &Model, candidates: &Candidates) -> I
     Inspection {
         file: sources.path(0).display().to_string(),
         parameter_count: model.slots.len(),
-        base_constraint_count: candidates.list.len(),
+        base_constraint_count: candidates.total(),
         constraint_counts: RelationKind::ALL
             .iter()
             .map(|&k| (k, candidates.count(k)))
             .collect(),
+        identical_by_construction: candidates.identical.values().sum(),
         tolerance: candidates.tolerance.epsilon,
         slots,
         parts,
@@ -298,6 +302,13 @@ impl Inspection {
             "\nRelations that hold ({})",
             self.base_constraint_count
         );
+        if self.identical_by_construction > 0 {
+            let _ = writeln!(
+                out,
+                "  ({} of them pair features driven by the very same numbers, such as instances of one\n  module or loop body; they hold for every setting and are not listed)",
+                self.identical_by_construction
+            );
+        }
         for kind in RelationKind::ALL {
             let of_kind: Vec<&RelationRow> =
                 self.constraints.iter().filter(|c| c.kind == kind).collect();

@@ -404,17 +404,21 @@ fn remap_part(p: &Part, map: &dyn Fn(SlotId) -> Option<SlotId>) -> Part {
 
 /// Makes names unique by numbering repeats: `leg`, `leg_2`, `leg_3`.
 fn dedupe(names: &mut [String]) {
-    let mut seen: std::collections::HashSet<String> = std::collections::HashSet::new();
+    let mut seen: std::collections::HashSet<String> = names.iter().cloned().collect();
+    let mut first: std::collections::HashSet<String> = std::collections::HashSet::new();
+    let mut next: HashMap<String, usize> = HashMap::new();
     for n in names.iter_mut() {
-        if seen.insert(n.clone()) {
+        if first.insert(n.clone()) {
             continue;
         }
-        let mut k = 2;
+        let k = next.entry(n.clone()).or_insert(2);
         while seen.contains(&format!("{n}_{k}")) {
-            k += 1;
+            *k += 1;
         }
-        *n = format!("{n}_{k}");
-        seen.insert(n.clone());
+        let fresh = format!("{n}_{k}");
+        *k += 1;
+        seen.insert(fresh.clone());
+        *n = fresh;
     }
 }
 

@@ -41,8 +41,12 @@ impl RangeValue {
         if (st > 0.0 && s > e) || (st < 0.0 && s < e) {
             return 0;
         }
-        let n = ((e - s) / st + 1e-9).floor() as usize + 1;
-        n.min(10_000_000)
+        // Float-to-int casts saturate, so a huge range is capped, never wrapped.
+        let steps = ((e - s) / st + 1e-9).floor();
+        if steps >= 10_000_000.0 {
+            return 10_000_000;
+        }
+        steps as usize + 1
     }
 }
 

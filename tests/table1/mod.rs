@@ -1,0 +1,189 @@
+//! The quality benchmark of the main job (our Table 1), shared by `tests/quality.rs`
+//! (which asserts it) and `benches/quality.rs` (which prints it).
+//!
+//! For each of the paper's five models and its five hand-made variations
+//! (`examples/variations/paper_<model>/`): add Gaussian noise of 1% of the model's size (in
+//! world units: a slot's noise is divided by how strongly it moves faces), run discovery on
+//! the noisy set, and check that every clean variation stays reachable (its projection onto
+//! the kept relations has IoU ≥ 0.98 with it) with a dimension at most one above the clean
+//! truth (the null space of the relations every clean variation keeps, plus the anchors).
+
+#![allow(dead_code)]
+
+use reparamc::analysis::discover::Similarity;
+use reparamc::analysis::optional::optional_parts;
+use reparamc::analysis::project::{Faces, project_onto};
+use reparamc::analysis::reparam::anchor_rows_at;
+use reparamc::analysis::{find_candidates, linalg};
+use reparamc::compile::{Options, VolumeSimilarity, reparameterize};
+use reparamc::front::source::SourceMap;
+use reparamc::ir::Affine;
+use reparamc::ir::feature::world_intervals;
+use reparamc::variation::{Variation, load_variation};
+use std::path::PathBuf;
+
+pub const MODELS: [&str; 5] = ["chair", "table", "car", "camera", "bottle"];
+
+#[derive(Debug, Clone)]
+pub struct Row {
+    pub model: String,
+    pub parameters: usize,
+    pub base_constraints: usize,
+    pub chosen: usize,
+    pub dimension: usize,
+    pub clean_dimension: usize,
+    /// The worst IoU of a clean variation with its projection onto the kept relations.
+    pub reachability: f64,
+    pub cutoff_step: usize,
+}
+
+struct Rng(u64);
+
+impl Rng {
+    fn uniform(&mut self) -> f64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        ((self.0 >> 11) as f64 + 0.5) / (1u64 << 53) as f64
+    }
+
+    /// A standard normal sample (Box–Muller).
+    fn normal(&mut self) -> f64 {
+        let (u, v) = (self.uniform(), self.uniform());
+        (-2.0 * u.ln()).sqrt() * (2.0 * std::f64::consts::PI * v).cos()
+    }
+}
+
+fn repo() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// How far each slot moves faces per unit (the largest coefficient over all face forms).
+fn leverage(model: &reparamc::ir::Model) -> Vec<f64> {
+    let mut lev = vec![0.0f64; model.slots.len()];
+    for p in &model.parts {
+        let Some(iv) = world_intervals(p) else {
+            continue;
+        };
+        for (lo, hi) in iv.iter() {
+            for n in [lo, hi] {
+                if let Some(a) = n.affine() {
+                    for &(s, c) in &a.terms {
+                        lev[s as usize] = lev[s as usize].max(c.abs());
+                    }
+                }
+            }
+        }
+    }
+    lev
+}
+
+pub fn evaluate(name: &str, seed: u64) -> Row {
+    let path = repo().join(format!("examples/paper/{name}.scad"));
+    let mut sources = SourceMap::new();
+    let (loaded, evaluated) =
+        reparamc::load_model_parsed(&mut sources, &path).expect("model loads");
+    let model = evaluated.model;
+    let dir = format!("examples/variations/paper_{name}");
+    let mut files: Vec<PathBuf> = std::fs::read_dir(repo().join(&dir))
+        .expect("variations exist")
+        .map(|e| e.unwrap().path())
+        .collect();
+    files.sort();
+    let clean: Vec<Variation> = files
+        .iter()
+        .map(|f| load_variation(&mut sources, loaded.main, &model, f).expect("variation matches"))
+        .collect();
+    let size = model.size();
+    let lev = leverage(&model);
+    let mut rng = Rng(seed);
+    let noisy: Vec<Variation> = clean
+        .iter()
+        .map(|v| Variation {
+            name: v.name.clone(),
+            values: v
+                .values
+                .iter()
+                .enumerate()
+                .map(|(s, &x)| {
+                    let sigma = if lev[s] > 0.0 {
+                        0.01 * size / lev[s]
+                    } else {
+                        0.01 * x.abs()
+                    };
+                    // A part a variation does without (zero size) stays without.
+                    if x == 0.0 && !model.slots[s].position {
+                        x
+                    } else {
+                        x + sigma * rng.normal()
+                    }
+                })
+                .collect(),
+        })
+        .collect();
+    let compiled = reparameterize(&sources, &loaded, &model, &noisy, &Options::default());
+    let candidates = find_candidates(&model);
+    let sim = VolumeSimilarity { model: &model };
+    let clean_values: Vec<Vec<f64>> = clean.iter().map(|v| v.values.clone()).collect();
+    let optional = optional_parts(model.parts.len(), &clean_values, &sim);
+    let tol = 1e-6 * size;
+    // The clean truth: relations every clean variation keeps (ignoring parts it does without).
+    let common: Vec<&Affine> = candidates
+        .list
+        .iter()
+        .filter(|c| {
+            clean_values.iter().zip(&optional).all(|(v, skip)| {
+                let parts = [candidates.features[c.a].part, candidates.features[c.b].part];
+                parts.iter().any(|p| skip.contains(p))
+                    || c.rows.iter().all(|r| r.eval(v).abs() <= tol)
+            })
+        })
+        .flat_map(|c| c.rows.iter())
+        .collect();
+    let anchors = anchor_rows_at(&model, &model.slot_values());
+    let mut truth = common.clone();
+    truth.extend(anchors.iter());
+    let clean_dimension = linalg::nullity(&truth, model.slots.len());
+    let faces = Faces::of(&model);
+    let kept: Vec<&Affine> = compiled.kept.iter().flat_map(|c| c.rows.iter()).collect();
+    let reachability = clean_values
+        .iter()
+        .zip(&optional)
+        .map(|(v, skip)| {
+            let own = anchor_rows_at(&model, v);
+            let rows: Vec<&Affine> = kept.iter().copied().chain(own.iter()).collect();
+            let p = project_onto(&faces, v, &rows, skip);
+            sim.similarity(&p, v, skip)
+        })
+        .fold(1.0, f64::min);
+    Row {
+        model: name.to_string(),
+        parameters: model.slots.len(),
+        base_constraints: candidates.total(),
+        chosen: compiled.kept.len(),
+        dimension: compiled.solution.free.len(),
+        clean_dimension,
+        reachability,
+        cutoff_step: compiled.report.cutoff.as_ref().map_or(0, |c| c.keep),
+    }
+}
+
+pub fn table(rows: &[Row]) -> String {
+    let mut s = String::from(
+        "| model | parameters | base constraints | chosen | dimension | clean dimension | reachability (min IoU) | cutoff step |\n|---|---|---|---|---|---|---|---|\n",
+    );
+    for r in rows {
+        s.push_str(&format!(
+            "| {} | {} | {} | {} | {} | {} | {:.4} | {} |\n",
+            r.model,
+            r.parameters,
+            r.base_constraints,
+            r.chosen,
+            r.dimension,
+            r.clean_dimension,
+            r.reachability,
+            r.cutoff_step
+        ));
+    }
+    s
+}
