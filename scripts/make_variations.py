@@ -104,6 +104,7 @@ MODELS = {
         "bar_stool": dict(W=40, D=40, T=4, L=4, H=100, B=70, A=30, arms=False, back=False),
         "armchair": dict(W=90, D=85, T=12, L=10, H=40, B=60, A=25),
         "lounge": dict(W=80, D=110, T=10, L=8, H=25, B=50, A=20),
+        "dining_chair": dict(W=45, D=45, T=4, L=4, H=45, B=45, A=30, arms=False),
     }),
     "table": (table, dict(W=100, D=100, T=10, L=10, H=70, i=5, S=10), {
         "coffee_table": dict(W=120, D=60, T=4, L=5, H=40, i=3, S=3),

@@ -349,7 +349,12 @@ fn toggle_name(model: &Model, t: &Toggle, taken: &HashSet<String>) -> (String, S
         name = format!("show_{base}_{k}");
         k += 1;
     }
-    (name, names.join(", "))
+    let words: Vec<String> = names.iter().map(|n| n.replace('_', " ")).collect();
+    let mut description = english_list(&words);
+    if let Some(c) = description.get(0..1) {
+        description.replace_range(0..1, &c.to_uppercase());
+    }
+    (name, description)
 }
 
 /// Runs the main job on a loaded model.
@@ -482,7 +487,7 @@ pub fn reparameterize(
         let without: Vec<String> = t
             .off_in
             .iter()
-            .map(|&j| format!("the {}", variations[j].name))
+            .map(|&j| format!("the {}", variations[j].name.replace('_', " ")))
             .collect();
         let verb = if without.len() == 1 { "does" } else { "do" };
         switches.push(Switch {

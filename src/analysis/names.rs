@@ -193,7 +193,13 @@ pub fn name_free_variables(
                 ),
                 None => {
                     let prefix = naming_words(&owners, owner);
-                    let what = if owners.len() > 1 {
+                    let what = if owners.len() > 1 && !common_words(&owners).is_empty() {
+                        format!(
+                            "of every {} ({} numbers)",
+                            prefix.replace('_', " "),
+                            owners.len()
+                        )
+                    } else if owners.len() > 1 {
                         let mut distinct: Vec<String> =
                             owners.iter().map(|o| words(o).join(" ")).collect();
                         distinct.dedup();

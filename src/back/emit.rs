@@ -95,14 +95,14 @@ fn variables_block(plan: &EmitPlan, out: &mut String) {
     if !plan.blends.is_empty() {
         let _ = writeln!(out, "\n/* [Variations] */");
         for (i, b) in plan.blends.iter().enumerate() {
+            let words = b.name.replace('_', " ");
             if i == 0 {
                 let _ = writeln!(
                     out,
-                    "// Blend toward the {} (0 = as set above, 1 = {})",
-                    b.name, b.name
+                    "// Blend toward the {words} (0 = as set above, 1 = {words})"
                 );
             } else {
-                let _ = writeln!(out, "// Blend toward the {}", b.name);
+                let _ = writeln!(out, "// Blend toward the {words}");
             }
             let _ = writeln!(out, "{} = 0; // [0:0.05:1]", b.name);
         }
