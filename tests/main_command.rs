@@ -248,8 +248,8 @@ fn anchored(parts: &[Part]) -> Vec<Part> {
         .iter()
         .map(|p| {
             let mut q = p.clone();
-            for a in 0..3 {
-                q.world.m[a][3] = reparamc::ir::Num::constant(p.world.m[a][3].value + shift[a]);
+            for (a, d) in shift.iter().enumerate() {
+                q.world.m[a][3] = reparamc::ir::Num::constant(p.world.m[a][3].value + d);
             }
             q
         })

@@ -35,10 +35,11 @@ pub fn size_forms(model: &Model) -> Vec<Affine> {
             nums.extend(extents.iter());
         }
         for n in nums {
-            if let Some(a) = n.affine() {
-                if !a.is_constant() && a.eval(&values) > 0.0 {
-                    out.push(a.clone());
-                }
+            if let Some(a) = n.affine()
+                && !a.is_constant()
+                && a.eval(&values) > 0.0
+            {
+                out.push(a.clone());
             }
         }
     }

@@ -13,7 +13,6 @@ use codespan_reporting::term::termcolor::{ColorChoice, StandardStream};
 use reparamc::front::diag::Diagnostic;
 use reparamc::front::source::SourceMap;
 use std::io::{IsTerminal, Write};
-use std::path::PathBuf;
 use std::process::ExitCode;
 
 /// Exit code for a model that could not be compiled (a diagnostic was printed).
@@ -88,7 +87,7 @@ pub fn print_stdout(text: &str) -> ExitCode {
 }
 
 /// Loads a model, printing its diagnostics; `None` after an error was reported.
-pub fn load(path: &PathBuf) -> Option<(SourceMap, reparamc::front::eval::Evaluated)> {
+pub fn load(path: &std::path::Path) -> Option<(SourceMap, reparamc::front::eval::Evaluated)> {
     let mut sources = SourceMap::new();
     match reparamc::load_model(&mut sources, path) {
         Ok(e) => {

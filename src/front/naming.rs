@@ -35,10 +35,10 @@ impl Naming {
         }
         if let Some(p) = programs.get(&main) {
             for s in &p.stmts {
-                if let StmtKind::Assign { name, value } = &s.kind {
-                    if let Some(span) = bare_literal(value) {
-                        naming.variables.insert(span, name.name.clone());
-                    }
+                if let StmtKind::Assign { name, value } = &s.kind
+                    && let Some(span) = bare_literal(value)
+                {
+                    naming.variables.insert(span, name.name.clone());
                 }
             }
         }
@@ -172,12 +172,11 @@ impl CommentIndex {
 
     fn name_for(&self, span: Span) -> Option<String> {
         let line = self.line_of(span.start as usize);
-        if let Some((at, text)) = self.trailing_by_line.get(&line) {
-            if *at > span.start as usize {
-                if let Some(id) = identifier_from_comment(text) {
-                    return Some(id);
-                }
-            }
+        if let Some((at, text)) = self.trailing_by_line.get(&line)
+            && *at > span.start as usize
+            && let Some(id) = identifier_from_comment(text)
+        {
+            return Some(id);
         }
         let above = line.checked_sub(1)?;
         identifier_from_comment(self.standalone_by_end_line.get(&above)?)
@@ -214,10 +213,10 @@ impl<'a> Visitor<'a> for Walker<'_, '_> {
     }
 
     fn expr(&mut self, e: &'a Expr) {
-        if matches!(e.kind, ExprKind::Number { .. }) {
-            if let Some(ctx) = self.stack.iter().rev().flatten().next() {
-                self.naming.literal_contexts.insert(e.span, ctx.clone());
-            }
+        if matches!(e.kind, ExprKind::Number { .. })
+            && let Some(ctx) = self.stack.iter().rev().flatten().next()
+        {
+            self.naming.literal_contexts.insert(e.span, ctx.clone());
         }
     }
 }

@@ -151,9 +151,9 @@ pub fn part_features(part: &Part, index: usize) -> Option<Vec<Feature>> {
                     );
                 }
             }
-            for a in 0..3 {
+            for (a, axis_name) in AXIS_NAMES.iter().enumerate() {
                 let others: Vec<Num> = (0..3).filter(|&b| b != a).map(center).collect();
-                let role = format!("{}_axis", AXIS_NAMES[a]);
+                let role = format!("{axis_name}_axis");
                 push(FeatureKind::AxisLine { axis: a as u8 }, role, others);
             }
             for c in 0..8u8 {

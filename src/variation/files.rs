@@ -138,21 +138,21 @@ pub fn load_variation(
     while i < ours.len() || j < theirs.len() {
         let (a, b) = (ours.get(i), theirs.get(j));
         // A sign may appear or disappear in front of a number: `0` → `-22.5`.
-        if let (Some((Tok::Num(_), s, _)), true) = (a, negated_number(&theirs, j)) {
-            if let Some((Tok::Num(v), vs, _)) = theirs.get(j + 1) {
-                at_number.insert(*s, -v);
-                variant_offset.insert(*s, *vs);
-                (i, j) = (i + 1, j + 2);
-                continue;
-            }
+        if let (Some((Tok::Num(_), s, _)), true) = (a, negated_number(&theirs, j))
+            && let Some((Tok::Num(v), vs, _)) = theirs.get(j + 1)
+        {
+            at_number.insert(*s, -v);
+            variant_offset.insert(*s, *vs);
+            (i, j) = (i + 1, j + 2);
+            continue;
         }
-        if let (true, Some((Tok::Num(v), vs, _))) = (negated_number(&ours, i), b) {
-            if let Some((Tok::Num(_), s, _)) = ours.get(i + 1) {
-                at_number.insert(*s, -v);
-                variant_offset.insert(*s, *vs);
-                (i, j) = (i + 2, j + 1);
-                continue;
-            }
+        if let (true, Some((Tok::Num(v), vs, _))) = (negated_number(&ours, i), b)
+            && let Some((Tok::Num(_), s, _)) = ours.get(i + 1)
+        {
+            at_number.insert(*s, -v);
+            variant_offset.insert(*s, *vs);
+            (i, j) = (i + 2, j + 1);
+            continue;
         }
         let same = match (a, b) {
             (Some((Tok::Num(_), ..)), Some((Tok::Num(_), ..))) => true,
@@ -187,31 +187,31 @@ pub fn load_variation(
         if f.span.file != base {
             continue;
         }
-        if let Some(&v) = at_number.get(&(f.span.start as usize)) {
-            if v != f.value {
-                let why = match &f.reason {
-                    FreezeReason::Structural(w) => format!("it decides structure ({w})"),
-                    FreezeReason::Product(_) => {
-                        "it multiplies another parameter, so it is held constant".into()
-                    }
-                };
-                let offset = variant_offset
-                    .get(&(f.span.start as usize))
-                    .copied()
-                    .unwrap_or(0);
-                return Err(Box::new(
-                    Diagnostic::error(
-                        "E0602",
-                        format!("variation `{name}` changes a number that must stay fixed"),
-                    )
-                    .at(
-                        Span::new(file, offset, offset + 1),
-                        format!("this is {v} here"),
-                    )
-                    .with_secondary(f.span, format!("but {} in the model", f.text))
-                    .with_note(format!("this number is not a parameter: {why}")),
-                ));
-            }
+        if let Some(&v) = at_number.get(&(f.span.start as usize))
+            && v != f.value
+        {
+            let why = match &f.reason {
+                FreezeReason::Structural(w) => format!("it decides structure ({w})"),
+                FreezeReason::Product(_) => {
+                    "it multiplies another parameter, so it is held constant".into()
+                }
+            };
+            let offset = variant_offset
+                .get(&(f.span.start as usize))
+                .copied()
+                .unwrap_or(0);
+            return Err(Box::new(
+                Diagnostic::error(
+                    "E0602",
+                    format!("variation `{name}` changes a number that must stay fixed"),
+                )
+                .at(
+                    Span::new(file, offset, offset + 1),
+                    format!("this is {v} here"),
+                )
+                .with_secondary(f.span, format!("but {} in the model", f.text))
+                .with_note(format!("this number is not a parameter: {why}")),
+            ));
         }
     }
     let values = model

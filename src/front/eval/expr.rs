@@ -526,7 +526,7 @@ impl Eval<'_> {
         };
         self.freeze_num(n, "an index");
         let k = n.value;
-        if !(k >= 0.0) || !k.is_finite() {
+        if k.is_nan() || k < 0.0 || !k.is_finite() {
             return Value::Undef;
         }
         let k = k as usize;

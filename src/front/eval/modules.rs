@@ -350,7 +350,7 @@ impl<'a> Eval<'a> {
                 let mut t = Transform::identity();
                 if let Some(v) = v {
                     for (i, n) in v.into_iter().enumerate() {
-                        self.name_slots(&n, &format!("{}", ["x", "y", "z"][i]), None);
+                        self.name_slots(&n, ["x", "y", "z"][i], None);
                         t.m[i][3] = n;
                     }
                 }

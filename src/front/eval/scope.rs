@@ -39,12 +39,15 @@ pub struct Defs {
     pub functions: HashMap<Span, Rc<FunctionDefn>>,
 }
 
+/// A definition and, for one imported with `use`, the scope its body resolves names in.
+type Defined<T> = (Rc<T>, Option<Rc<Scope>>);
+
 #[derive(Debug, Default)]
 pub struct Scope {
     vars: RefCell<HashMap<String, Value>>,
     /// Functions by name, with the scope they resolve in when it is not this one (`use`).
-    functions: RefCell<HashMap<String, (Rc<FunctionDefn>, Option<Rc<Scope>>)>>,
-    modules: RefCell<HashMap<String, (Rc<ModuleDefn>, Option<Rc<Scope>>)>>,
+    functions: RefCell<HashMap<String, Defined<FunctionDefn>>>,
+    modules: RefCell<HashMap<String, Defined<ModuleDefn>>>,
     parent: Option<Rc<Scope>>,
     caller: Option<Rc<Scope>>,
 }
