@@ -232,6 +232,52 @@ pub fn format_expression(e: &Expression, names: &[String]) -> String {
     out
 }
 
+/// `x` moved rigidly (in slot space) so the model's anchors — centre in x and y, floor in
+/// z — are where the input has them: the smallest slot change that shifts every face by
+/// the same amount along its axis. Sliders are read in the input's frame; where no slot
+/// change translates the whole model, `x` is returned as it is.
+fn moved_to_input_anchor(model: &Model, x: &[f64]) -> Vec<f64> {
+    let at_input = anchor_rows_at(model, &model.slot_values());
+    let here = anchor_rows_at(model, x);
+    // anchor(x) − anchor(x0) per axis (x and y centres, z floor).
+    let shift: Vec<f64> = here
+        .iter()
+        .zip(&at_input)
+        .map(|(h, i)| h.constant - i.constant)
+        .collect();
+    if shift.len() != 3 || shift.iter().all(|s| *s == 0.0) {
+        return x.to_vec();
+    }
+    let d = model.slots.len();
+    let mut rows: Vec<Vec<f64>> = Vec::new();
+    let mut rhs: Vec<f64> = Vec::new();
+    for p in model.parts.iter().filter(|p| p.misaligned.is_none()) {
+        let Some(iv) = crate::ir::feature::world_intervals(p) else {
+            continue;
+        };
+        for (a, (lo, hi)) in iv.iter().enumerate() {
+            for n in [lo, hi] {
+                if let Some(f) = n.affine() {
+                    let mut r = vec![0.0; d];
+                    for &(s, c) in &f.terms {
+                        r[s as usize] = c;
+                    }
+                    rows.push(r);
+                    rhs.push(shift[a]);
+                }
+            }
+        }
+    }
+    let q = nalgebra::DMatrix::from_fn(rows.len(), d, |i, j| rows[i][j]);
+    let b = nalgebra::DVector::from_vec(rhs);
+    let delta = crate::analysis::linalg::pinv(&q) * &b;
+    let residual = (&q * &delta - &b).amax();
+    if residual > 1e-6 * model.size().max(1.0) {
+        return x.to_vec();
+    }
+    x.iter().zip(delta.iter()).map(|(a, b)| a + b).collect()
+}
+
 /// For each slot, the parts whose geometry depends on it.
 fn slot_parts(model: &Model) -> Vec<Vec<usize>> {
     let mut out = vec![Vec::new(); model.slots.len()];
@@ -445,7 +491,8 @@ pub fn reparameterize(
         .map(|(v, o)| {
             let anchors = anchor_rows_at(model, v);
             let all_rows: Vec<&Affine> = rows.iter().chain(anchors.iter()).collect();
-            project_onto(&faces, v, &all_rows, o)
+            let p = project_onto(&faces, v, &all_rows, o);
+            moved_to_input_anchor(model, &p)
         })
         .collect();
     let free_at =
