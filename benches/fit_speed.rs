@@ -120,7 +120,7 @@ criterion_main!(benches);
 
 /// Where an iteration's time goes (printed once).
 #[allow(dead_code)]
-pub fn breakdown(s: &Setup) {
+fn breakdown(s: &Setup) {
     use reparamc::fit::loss::view_loss;
     use reparamc::render::soft::theta_gradient;
     let scene = s.problem.scene(&s.problem.x0);

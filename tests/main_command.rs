@@ -340,7 +340,7 @@ fn ast_shows_every_slider_with_group_description_and_range() {
     for v in &r.compiled.report.variations {
         let name = reparamc::analysis::names::sanitize(&v.name);
         assert!(
-            text.contains(&format!("//Group(\"Variations\")\n//Description(")),
+            text.contains("//Group(\"Variations\")\n//Description("),
             "no Variations group"
         );
         assert!(

@@ -160,8 +160,8 @@ fn border_colour(img: &Rgb) -> [f32; 3] {
     for c in &border {
         let e = counts.entry(key(c)).or_insert((0, [0.0; 3]));
         e.0 += 1;
-        for k in 0..3 {
-            e.1[k] += c[k] as f64;
+        for (sum, v) in e.1.iter_mut().zip(c) {
+            *sum += f64::from(*v);
         }
     }
     let best = counts

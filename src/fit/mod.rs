@@ -429,10 +429,10 @@ pub fn fit(
     };
     let d = problem.x0.len();
     for st in stages {
-        if let Some(b) = &st.basis {
-            if b.nrows() != d {
-                return Err(FitError::Basis(b.nrows(), d));
-            }
+        if let Some(b) = &st.basis
+            && b.nrows() != d
+        {
+            return Err(FitError::Basis(b.nrows(), d));
         }
     }
     // Parts that start out drawable must stay so.

@@ -524,10 +524,10 @@ pub fn items_of(csg: &CsgNode) -> Vec<Item> {
             }
             let mut parts: Vec<usize> = Vec::new();
             for op in &program {
-                if let Op::Part(i) = op {
-                    if !parts.contains(&(*i as usize)) {
-                        parts.push(*i as usize);
-                    }
+                if let Op::Part(i) = op
+                    && !parts.contains(&(*i as usize))
+                {
+                    parts.push(*i as usize);
                 }
             }
             Some(Item { program, parts })
@@ -1128,6 +1128,7 @@ mod tests {
         let (ga, gb) = h.edge_gradient(e, u);
         let eps = 1e-6;
         for (vi, g) in [(e, ga), ((e + 1) % 4, gb)] {
+            #[allow(clippy::needless_range_loop)]
             for k in 0..2 {
                 let mut h2 = h.clone();
                 h2.verts[vi][k] += eps;

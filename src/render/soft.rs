@@ -220,10 +220,13 @@ impl PixelCtx<'_> {
     fn shade_of(&self, n_world: Vec3) -> (f64, Vec3) {
         let n = self.prep.frame.to_eye(n_world);
         let f = shade_features(n);
-        let mut v = 0.0;
-        for k in 0..NSHADE {
-            v += self.shade[k] * f[k];
-        }
+        let v: f64 = self
+            .shade
+            .iter()
+            .zip(f.iter())
+            .take(NSHADE)
+            .map(|(s, x)| s * x)
+            .sum();
         (v, n)
     }
 
@@ -267,10 +270,10 @@ impl PixelCtx<'_> {
             } else {
                 visible_surface(&item.program, st)
             };
-            if let Some((t, n)) = visible {
-                if best_hard.is_none_or(|b| t < b.0) {
-                    best_hard = Some((t, idx as i32, n));
-                }
+            if let Some((t, n)) = visible
+                && best_hard.is_none_or(|b| t < b.0)
+            {
+                best_hard = Some((t, idx as i32, n));
             }
             let (alpha, keep) = match self.sigma {
                 None => (if visible.is_some() { 1.0 } else { 0.0 }, 1.0),
@@ -470,6 +473,7 @@ pub fn render_view(
             sp.1 = sp.1.max(r[2]);
         }
     }
+    #[allow(clippy::type_complexity)]
     let rows: Vec<(
         Vec<f32>,
         Vec<f32>,
