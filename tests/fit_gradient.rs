@@ -41,11 +41,17 @@ fn loss(
 }
 
 /// Central differences against the analytic gradient for every live slot.
-fn check(rel: &str, shading: f64) {
+fn check(rel: &str, shading: f64, tolerance: f64) {
     let m = model(rel);
     let mut p = Parametric::new(&m);
     let (lo, hi) = m.bounds().unwrap();
-    let cams = default_views(lo, hi, 3, 96, 80);
+    // Small parts (the cart's hub caps) need more pixels to be smooth.
+    let (w, h) = if rel.contains("cart") {
+        (240, 200)
+    } else {
+        (96, 80)
+    };
+    let cams = default_views(lo, hi, 3, w, h);
     p.fix_rings(&cams);
     let sigma = 0.6;
     let spec = LossSpec {
@@ -88,7 +94,7 @@ fn check(rel: &str, shading: f64) {
         let err = (fd - g[s]).abs() / gmax;
         worst = worst.max(err);
         assert!(
-            err < 0.02,
+            err < tolerance,
             "{rel} slot {s} ({}): analytic {:.6e} vs differences {:.6e}",
             m.slots[s].name,
             g[s],
@@ -103,13 +109,22 @@ fn check(rel: &str, shading: f64) {
 
 #[test]
 fn gradient_matches_differences_boxes() {
-    check("examples/chair.scad", 0.0);
-    check("examples/paper/chair.scad", 0.0);
+    check("examples/chair.scad", 0.0, 0.02);
+    check("examples/paper/chair.scad", 0.0, 0.02);
 }
 
 #[test]
 fn gradient_matches_differences_curved() {
-    check("examples/paper/bottle.scad", 0.0);
-    check("examples/camera.scad", 0.0);
-    check("examples/lamp.scad", 0.0);
+    check("examples/paper/bottle.scad", 0.0, 0.02);
+    check("examples/camera.scad", 0.0, 0.02);
+    check("examples/lamp.scad", 0.0, 0.02);
+}
+
+#[test]
+fn gradient_matches_differences_hollows() {
+    // Differences: the rim of the mug's hollow and the cart's open box move with their slots.
+    // With shading the rim's edge matters (the wall's slot), and shading's hard internal
+    // edges (which carry no gradient) make the differences a little noisier.
+    check("examples/mug.scad", 0.5, 0.04);
+    check("examples/toy_cart.scad", 0.0, 0.02);
 }

@@ -44,6 +44,9 @@ pub struct FitOptions {
     /// parts far from their place in the target still feel it (and early rounds are cheap).
     /// 0: the paper's single resolution.
     pub levels: u32,
+    /// Coarse levels render at full size and pool the difference (slower, but thin parts
+    /// keep their true weight) instead of rendering small images.
+    pub pooled: bool,
 }
 
 impl Default for FitOptions {
@@ -60,6 +63,7 @@ impl Default for FitOptions {
             fit_shading: true,
             min_extent: 0.002,
             levels: 0,
+            pooled: true,
         }
     }
 }
@@ -429,10 +433,10 @@ pub fn fit(
     };
     let d = problem.x0.len();
     for st in stages {
-        if let Some(b) = &st.basis
-            && b.nrows() != d
-        {
-            return Err(FitError::Basis(b.nrows(), d));
+        if let Some(b) = &st.basis {
+            if b.nrows() != d {
+                return Err(FitError::Basis(b.nrows(), d));
+            }
         }
     }
     // Parts that start out drawable must stay so.
@@ -486,13 +490,23 @@ pub fn fit(
                       sigma: f64,
                       shades: &[[f64; NSHADE]],
                       grad: bool| {
-        let (cams, tgts) = &pyramid[level];
+        // Pooled levels render at full size and compare pooled residuals.
+        let (render_level, pool) = if opts.pooled {
+            (0, level as u32)
+        } else {
+            (level, 0)
+        };
+        let (cams, tgts) = &pyramid[render_level];
         let scene = problem.scene(x);
         let views: Vec<ViewPrep> = cams
             .iter()
             .map(|c| prepare_view(&scene, c, Some(sigma)))
             .collect();
-        backend.loss(&scene, &views, sigma, shades, tgts, &opts.loss, grad)
+        let spec = LossSpec {
+            level: opts.loss.level + pool,
+            ..opts.loss
+        };
+        backend.loss(&scene, &views, sigma, shades, tgts, &spec, grad)
     };
     let refit_shades =
         |backend: &mut dyn Backend, level: usize, x: &[f64], shades: &mut Vec<[f64; NSHADE]>| {
@@ -533,7 +547,12 @@ pub fn fit(
         for _ in 0..stage.rounds {
             let sigma = sigma_at(round);
             let level = level_at(round);
-            refit_shades(backend, level, &space.x(&y), &mut shades);
+            refit_shades(
+                backend,
+                if opts.pooled { 0 } else { level },
+                &space.x(&y),
+                &mut shades,
+            );
             for it in 0..opts.iterations {
                 let xs = space.x(&y);
                 let out = image_loss(backend, level, &xs, sigma, &shades, true);

@@ -8,7 +8,7 @@
 //! Vulkan device that runs the shader on the CPU.
 
 use super::scene::{Kind, NSHADE, NTHETA, Op, Scene};
-use super::soft::{Entry, HardImage, SoftImage, ViewPrep, theta_gradient};
+use super::soft::{Entries, Entry, HardImage, SoftImage, SurfaceEntry, ViewPrep, theta_gradient};
 use super::{Backend, LossOut};
 use crate::fit::loss::{LossSpec, Target, view_loss};
 use bytemuck::{Pod, Zeroable};
@@ -28,6 +28,8 @@ struct GParams {
     hard: u32,
     want_entries: u32,
     entry_capacity: u32,
+    surface_capacity: u32,
+    pad: [u32; 3],
 }
 
 #[repr(C)]
@@ -52,6 +54,26 @@ struct GPart {
     hi: [f32; 4],
     center: [f32; 4],
     flags: [u32; 4],
+    l0: [f32; 4],
+    l1: [f32; 4],
+    l2: [f32; 4],
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, Pod, Zeroable)]
+struct GItem {
+    a: [u32; 4],
+    b: [u32; 4],
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, Pod, Zeroable)]
+struct GSurfaceEntry {
+    a: [u32; 4],
+    b: [f32; 4],
+    n: [f32; 4],
+    q: [f32; 4],
+    l: [f32; 4],
 }
 
 #[repr(C)]
@@ -71,6 +93,7 @@ pub struct GpuBackend {
     info: String,
     /// Entries the last dispatch needed (the next one reserves at least this many).
     capacity: usize,
+    surface_capacity: usize,
 }
 
 /// Whether this machine may have a hardware GPU worth probing for (on Linux: a DRM render
@@ -113,7 +136,7 @@ impl GpuBackend {
             return Err(format!("only a software adapter ({})", info.name));
         }
         let limits = adapter.limits();
-        if limits.max_storage_buffers_per_shader_stage < 12 {
+        if limits.max_storage_buffers_per_shader_stage < 13 {
             return Err(format!(
                 "{} allows only {} storage buffers per shader stage",
                 info.name, limits.max_storage_buffers_per_shader_stage
@@ -150,6 +173,7 @@ impl GpuBackend {
             layout,
             info: format!("wgpu ({}, {:?})", info.name, info.backend),
             capacity: 1 << 16,
+            surface_capacity: 1 << 12,
         })
     }
 
@@ -161,14 +185,15 @@ impl GpuBackend {
         sigma: Option<f64>,
         shades: &[[f64; NSHADE]],
         want_entries: bool,
-    ) -> (Vec<SoftImage>, Vec<HardImage>, Vec<Vec<Entry>>) {
+    ) -> (Vec<SoftImage>, Vec<HardImage>, Vec<Entries>) {
         loop {
-            let (soft, hard, entries, needed) =
+            let (soft, hard, entries, needed, needed_s) =
                 self.dispatch_once(scene, views, sigma, shades, want_entries);
-            if needed <= self.capacity {
+            if needed <= self.capacity && needed_s <= self.surface_capacity {
                 return (soft, hard, entries);
             }
-            self.capacity = needed + needed / 4;
+            self.capacity = self.capacity.max(needed + needed / 4);
+            self.surface_capacity = self.surface_capacity.max(needed_s + needed_s / 4);
         }
     }
 
@@ -179,7 +204,7 @@ impl GpuBackend {
         sigma: Option<f64>,
         shades: &[[f64; NSHADE]],
         want_entries: bool,
-    ) -> (Vec<SoftImage>, Vec<HardImage>, Vec<Vec<Entry>>, usize) {
+    ) -> (Vec<SoftImage>, Vec<HardImage>, Vec<Entries>, usize, usize) {
         let np = scene.parts.len();
         let ni = scene.items.len();
         // Views.
@@ -205,6 +230,14 @@ impl GpuBackend {
             .parts
             .iter()
             .map(|p| {
+                let lrow = |i: usize| {
+                    [
+                        p.l[i][0] as f32,
+                        p.l[i][1] as f32,
+                        p.l[i][2] as f32,
+                        p.t[i] as f32,
+                    ]
+                };
                 let row = |i: usize| {
                     [
                         p.inv[i][0] as f32,
@@ -232,9 +265,12 @@ impl GpuBackend {
                             Kind::Sphere => 2,
                         },
                         p.valid as u32,
-                        0,
+                        p.centered as u32,
                         0,
                     ],
+                    l0: lrow(0),
+                    l1: lrow(1),
+                    l2: lrow(2),
                 }
             })
             .collect();
@@ -265,7 +301,7 @@ impl GpuBackend {
         }
         // Item programs.
         let mut code: Vec<u32> = Vec::new();
-        let mut items: Vec<[u32; 4]> = Vec::with_capacity(ni);
+        let mut items: Vec<GItem> = Vec::with_capacity(ni);
         let mut progs = Vec::with_capacity(ni);
         for it in &scene.items {
             let start = code.len() as u32;
@@ -282,9 +318,25 @@ impl GpuBackend {
         for (it, (start, len)) in scene.items.iter().zip(progs) {
             let pstart = code.len() as u32;
             code.extend(it.parts.iter().map(|&p| p as u32));
-            items.push([start, len, pstart, it.parts.len() as u32]);
+            let b = match &it.split {
+                Some((k, negs)) => {
+                    let nstart = code.len() as u32;
+                    code.extend(negs.iter().map(|&p| p as u32));
+                    [*k as u32, nstart, negs.len() as u32, 0]
+                }
+                None => [0; 4],
+            };
+            items.push(GItem {
+                a: [start, len, pstart, it.parts.len() as u32],
+                b,
+            });
         }
         let capacity = if want_entries { self.capacity } else { 1 };
+        let scapacity = if want_entries {
+            self.surface_capacity
+        } else {
+            1
+        };
         let params = GParams {
             view_count: views.len() as u32,
             item_count: ni as u32,
@@ -294,6 +346,8 @@ impl GpuBackend {
             hard: sigma.is_none() as u32,
             want_entries: want_entries as u32,
             entry_capacity: capacity as u32,
+            surface_capacity: scapacity as u32,
+            pad: [0; 3],
         };
         let dev = &self.device;
         let init = |label: &str, bytes: &[u8], usage: wgpu::BufferUsages| {
@@ -332,6 +386,12 @@ impl GpuBackend {
         let b_hard = out("hard", n * 16);
         let b_item = out("item", n * 4);
         let entry_bytes = 16 + capacity as u64 * std::mem::size_of::<GEntry>() as u64;
+        let sentry_bytes = 16 + scapacity as u64 * std::mem::size_of::<GSurfaceEntry>() as u64;
+        let b_sentries = init(
+            "surface-entries",
+            &vec![0u8; sentry_bytes as usize],
+            storage | wgpu::BufferUsages::COPY_SRC,
+        );
         let b_entries = init(
             "entries",
             &vec![0u8; entry_bytes as usize],
@@ -341,8 +401,20 @@ impl GpuBackend {
             label: Some("soft"),
             layout: &self.layout,
             entries: &[
-                &b_params, &b_views, &b_parts, &b_hulls, &b_edges, &b_verts, &b_rects, &b_items,
-                &b_code, &b_soft, &b_hard, &b_item, &b_entries,
+                &b_params,
+                &b_views,
+                &b_parts,
+                &b_hulls,
+                &b_edges,
+                &b_verts,
+                &b_rects,
+                &b_items,
+                &b_code,
+                &b_soft,
+                &b_hard,
+                &b_item,
+                &b_entries,
+                &b_sentries,
             ]
             .iter()
             .enumerate()
@@ -364,6 +436,10 @@ impl GpuBackend {
         let r_hard = read("hard-read", n * 16);
         let r_item = read("item-read", n * 4);
         let r_entries = read("entries-read", if want_entries { entry_bytes } else { 16 });
+        let r_sentries = read(
+            "surface-entries-read",
+            if want_entries { sentry_bytes } else { 16 },
+        );
         let mut enc = dev.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: None });
         {
             let mut pass = enc.begin_compute_pass(&wgpu::ComputePassDescriptor {
@@ -382,6 +458,7 @@ impl GpuBackend {
         enc.copy_buffer_to_buffer(&b_item, 0, &r_item, 0, n * 4);
         if want_entries {
             enc.copy_buffer_to_buffer(&b_entries, 0, &r_entries, 0, entry_bytes);
+            enc.copy_buffer_to_buffer(&b_sentries, 0, &r_sentries, 0, sentry_bytes);
         }
         self.queue.submit([enc.finish()]);
         let mapped = |b: &wgpu::Buffer| {
@@ -392,6 +469,7 @@ impl GpuBackend {
         mapped(&r_item);
         if want_entries {
             mapped(&r_entries);
+            mapped(&r_sentries);
         }
         let _ = dev.poll(wgpu::PollType::Wait {
             submission_index: None,
@@ -405,15 +483,16 @@ impl GpuBackend {
         let soft_raw: Vec<[f32; 2]> = bytemuck::pod_collect_to_vec(&bytes(&r_soft));
         let hard_raw: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(&bytes(&r_hard));
         let item_raw: Vec<i32> = bytemuck::pod_collect_to_vec(&bytes(&r_item));
-        let mut per_view_entries: Vec<Vec<Entry>> = vec![Vec::new(); views.len()];
+        let mut per_view_entries: Vec<Entries> = vec![Entries::default(); views.len()];
         let mut needed = 0usize;
+        let mut needed_s = 0usize;
         if want_entries {
             let raw = bytes(&r_entries);
             let count = u32::from_le_bytes([raw[0], raw[1], raw[2], raw[3]]) as usize;
             needed = count;
             let body: Vec<GEntry> = bytemuck::pod_collect_to_vec(&raw[16..]);
             for e in body.iter().take(count.min(capacity)) {
-                per_view_entries[e.a[3] as usize].push(Entry {
+                per_view_entries[e.a[3] as usize].edges.push(Entry {
                     pixel: e.a[0],
                     part: e.a[1],
                     edge: e.a[2],
@@ -424,10 +503,32 @@ impl GpuBackend {
                 });
             }
         }
-        for b in [&r_soft, &r_hard, &r_item, &r_entries] {
-            if want_entries || !std::ptr::eq(b, &r_entries) {
-                b.unmap();
+        if want_entries {
+            let raw = bytes(&r_sentries);
+            let count = u32::from_le_bytes([raw[0], raw[1], raw[2], raw[3]]) as usize;
+            needed_s = count;
+            let body: Vec<GSurfaceEntry> = bytemuck::pod_collect_to_vec(&raw[16..]);
+            let v3 = |a: [f32; 4]| [a[0] as f64, a[1] as f64, a[2] as f64];
+            for e in body.iter().take(count.min(scapacity)) {
+                per_view_entries[e.a[2] as usize]
+                    .surfaces
+                    .push(SurfaceEntry {
+                        pixel: e.a[0],
+                        part: e.a[1],
+                        dm: e.b[0] as f64,
+                        ds: e.b[1] as f64,
+                        n: v3(e.n),
+                        q: v3(e.q),
+                        ldq: v3(e.l),
+                    });
             }
+        }
+        for b in [&r_soft, &r_hard, &r_item] {
+            b.unmap();
+        }
+        if want_entries {
+            r_entries.unmap();
+            r_sentries.unmap();
         }
         let mut softs = Vec::with_capacity(views.len());
         let mut hards = Vec::with_capacity(views.len());
@@ -461,7 +562,7 @@ impl GpuBackend {
                     .collect(),
             });
         }
-        (softs, hards, per_view_entries, needed)
+        (softs, hards, per_view_entries, needed, needed_s)
     }
 }
 

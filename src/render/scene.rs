@@ -458,6 +458,152 @@ fn intersect_frustum(o: Vec3, d: Vec3, z0: f64, z1: f64, r1: f64, r2: f64) -> Op
     })
 }
 
+/// The point of a part's surface nearest (in the sense of its nearest face) to a world
+/// point: the signed distance (world units, positive outside), the surface point in local
+/// coordinates as a material point, its world unit normal, and `N·(L·∂q/∂prim)`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SurfacePoint {
+    pub sd: f64,
+    pub q: Vec3,
+    pub n: Vec3,
+    pub ldq: [f64; 3],
+}
+
+impl PartGeom {
+    /// Signed distance from a world point to the part's nearest face plane (the largest of
+    /// the face distances, so exact near faces), with that face's material point.
+    pub fn surface_distance(&self, p: Vec3) -> Option<SurfacePoint> {
+        if !self.valid {
+            return None;
+        }
+        let q = self.to_local(p);
+        let inv = &self.inv;
+        let rowlen = |a: usize| norm(inv[a]).max(1e-300);
+        // World normal of a local normal and the factor from local to world distance.
+        let world = |nl: Vec3| -> (Vec3, f64) {
+            let w = [
+                inv[0][0] * nl[0] + inv[1][0] * nl[1] + inv[2][0] * nl[2],
+                inv[0][1] * nl[0] + inv[1][1] * nl[1] + inv[2][1] * nl[2],
+                inv[0][2] * nl[0] + inv[1][2] * nl[1] + inv[2][2] * nl[2],
+            ];
+            let l = norm(w).max(1e-300);
+            ([w[0] / l, w[1] / l, w[2] / l], l)
+        };
+        let finish = |sd: f64, qs: Vec3, n: Vec3, dq: [Vec3; 3]| -> SurfacePoint {
+            let ldq = std::array::from_fn(|k| dot(n, mat_vec(&self.l, dq[k])));
+            SurfacePoint { sd, q: qs, n, ldq }
+        };
+        let zero = [0.0; 3];
+        match self.kind {
+            Kind::Box => {
+                let mut best = (f64::NEG_INFINITY, 0usize, false);
+                for a in 0..3 {
+                    let l = rowlen(a);
+                    let dlo = (self.lo[a] - q[a]) / l;
+                    let dhi = (q[a] - self.hi[a]) / l;
+                    if dlo > best.0 {
+                        best = (dlo, a, false);
+                    }
+                    if dhi > best.0 {
+                        best = (dhi, a, true);
+                    }
+                }
+                let (sd, a, high) = best;
+                let mut qs = q;
+                qs[a] = if high { self.hi[a] } else { self.lo[a] };
+                let mut nl = [0.0; 3];
+                nl[a] = if high { 1.0 } else { -1.0 };
+                let (n, _) = world(nl);
+                let mut dq = [zero; 3];
+                dq[a][a] = match (self.centered, high) {
+                    (true, true) => 0.5,
+                    (true, false) => -0.5,
+                    (false, true) => 1.0,
+                    (false, false) => 0.0,
+                };
+                Some(finish(sd, qs, n, dq))
+            }
+            Kind::Frustum => {
+                let (z0, z1) = (self.lo[2], self.hi[2]);
+                let (dz0, dz1) = if self.centered {
+                    (-0.5, 0.5)
+                } else {
+                    (0.0, 1.0)
+                };
+                let h = z1 - z0;
+                let k = (self.r2 - self.r1) / h;
+                let rho = (q[0] * q[0] + q[1] * q[1]).sqrt();
+                let (c, s) = if rho > 1e-300 {
+                    (q[0] / rho, q[1] / rho)
+                } else {
+                    (1.0, 0.0)
+                };
+                let rs = self.r1 + k * (q[2] - z0);
+                let kk = (1.0 + k * k).sqrt();
+                let (ns, ws) = world([c / kk, s / kk, -k / kk]);
+                let side = (rho - rs) / kk / ws;
+                let l2 = rowlen(2);
+                let bottom = (z0 - q[2]) / l2;
+                let top = (q[2] - z1) / l2;
+                if side >= bottom && side >= top {
+                    let v = (q[2] - z0) / h;
+                    let qs = [rs * c, rs * s, q[2]];
+                    let dq = [
+                        [0.0, 0.0, dz0 + v * (dz1 - dz0)],
+                        [(1.0 - v) * c, (1.0 - v) * s, 0.0],
+                        [v * c, v * s, 0.0],
+                    ];
+                    Some(finish(side, qs, ns, dq))
+                } else if bottom >= top {
+                    let (n, _) = world([0.0, 0.0, -1.0]);
+                    Some(finish(
+                        bottom,
+                        [q[0], q[1], z0],
+                        n,
+                        [[0.0, 0.0, dz0], zero, zero],
+                    ))
+                } else {
+                    let (n, _) = world([0.0, 0.0, 1.0]);
+                    Some(finish(
+                        top,
+                        [q[0], q[1], z1],
+                        n,
+                        [[0.0, 0.0, dz1], zero, zero],
+                    ))
+                }
+            }
+            Kind::Sphere => {
+                let r = self.r1;
+                let rho = norm(q).max(1e-300);
+                let nl = [q[0] / rho, q[1] / rho, q[2] / rho];
+                let (n, w) = world(nl);
+                let sd = (rho - r) / w;
+                Some(finish(
+                    sd,
+                    [nl[0] * r, nl[1] * r, nl[2] * r],
+                    n,
+                    [nl, zero, zero],
+                ))
+            }
+        }
+    }
+}
+
+/// `∂sd/∂θ` of a surface point: minus the normal motion of its material point.
+pub fn surface_jacobian(sp_n: Vec3, q: Vec3, ldq: [f64; 3]) -> [f64; NTHETA] {
+    let mut j = [0.0; NTHETA];
+    for i in 0..3 {
+        for k in 0..3 {
+            j[4 * i + k] = -sp_n[i] * q[k];
+        }
+        j[4 * i + 3] = -sp_n[i];
+    }
+    for k in 0..3 {
+        j[12 + k] = -ldq[k];
+    }
+    j
+}
+
 /// One step of an item's boolean program (postfix).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Op {
@@ -474,12 +620,57 @@ pub struct Item {
     pub program: Vec<Op>,
     /// The parts the program mentions, in order.
     pub parts: Vec<usize>,
+    /// For `difference() { A; B; ... }` whose subtracted operands are parts or unions of
+    /// parts: the length of `A`'s program (a prefix) and the subtracted parts. Their edges
+    /// on `A`'s surface are then soft too (the rim of a mug's hollow).
+    pub split: Option<(usize, Vec<usize>)>,
 }
 
 impl Item {
     pub fn is_single(&self) -> bool {
         self.program.len() == 1
     }
+
+    /// The program of the first operand of a split difference.
+    pub fn positive(&self) -> &[Op] {
+        match &self.split {
+            Some((k, _)) => &self.program[..*k],
+            None => &self.program,
+        }
+    }
+}
+
+/// The split of a difference program (see [`Item::split`]).
+fn split_difference(program: &[Op]) -> Option<(usize, Vec<usize>)> {
+    let Some(&Op::Difference(n)) = program.last() else {
+        return None;
+    };
+    // Start of each operand on the stack.
+    let mut starts: Vec<usize> = Vec::new();
+    for (i, op) in program[..program.len() - 1].iter().enumerate() {
+        match *op {
+            Op::Part(_) => starts.push(i),
+            Op::Union(k) | Op::Difference(k) | Op::Intersection(k) => {
+                let at = starts.len().checked_sub(k as usize)?;
+                let s = starts[at];
+                starts.truncate(at);
+                starts.push(s);
+            }
+        }
+    }
+    if starts.len() != n as usize || n < 2 {
+        return None;
+    }
+    let positive = starts[1];
+    let mut negatives = Vec::new();
+    for op in &program[positive..program.len() - 1] {
+        match *op {
+            Op::Part(i) => negatives.push(i as usize),
+            Op::Union(_) => {}
+            _ => return None,
+        }
+    }
+    Some((positive, negatives))
 }
 
 /// Splits a CSG tree into the operands of its top-level union (nested unions flattened).
@@ -524,13 +715,18 @@ pub fn items_of(csg: &CsgNode) -> Vec<Item> {
             }
             let mut parts: Vec<usize> = Vec::new();
             for op in &program {
-                if let Op::Part(i) = op
-                    && !parts.contains(&(*i as usize))
-                {
-                    parts.push(*i as usize);
+                if let Op::Part(i) = op {
+                    if !parts.contains(&(*i as usize)) {
+                        parts.push(*i as usize);
+                    }
                 }
             }
-            Some(Item { program, parts })
+            let split = split_difference(&program);
+            Some(Item {
+                program,
+                parts,
+                split,
+            })
         })
         .collect()
 }
@@ -1128,7 +1324,6 @@ mod tests {
         let (ga, gb) = h.edge_gradient(e, u);
         let eps = 1e-6;
         for (vi, g) in [(e, ga), ((e + 1) % 4, gb)] {
-            #[allow(clippy::needless_range_loop)]
             for k in 0..2 {
                 let mut h2 = h.clone();
                 h2.verts[vi][k] += eps;

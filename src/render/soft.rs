@@ -10,10 +10,10 @@
 //! changes with the two hull vertices of the deciding edge. [`theta_gradient`] turns
 //! per-pixel loss derivatives and those entries into `∂loss/∂θ` for every part.
 
-use super::camera::{Camera, Frame, Vec3};
+use super::camera::{Camera, Frame, Vec3, dot, scale};
 use super::scene::{
-    CUTOFF, Coverage, Hull, NSHADE, NTHETA, PartGeom, Scene, eval_inside, eval_soft, hull,
-    sample_jacobian, shade_features,
+    CUTOFF, Coverage, Hull, NSHADE, NTHETA, PartGeom, Scene, SurfacePoint, eval_inside, eval_soft,
+    hull, logistic, sample_jacobian, shade_features, surface_jacobian,
 };
 use rayon::prelude::*;
 
@@ -78,7 +78,7 @@ pub fn prepare_view(scene: &Scene, camera: &Camera, sigma: Option<f64>) -> ViewP
     }
 }
 
-/// A pixel's sensitivity to one part's signed distance.
+/// A pixel's sensitivity to one part's signed distance to its silhouette.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Entry {
     pub pixel: u32,
@@ -91,6 +91,34 @@ pub struct Entry {
     /// `∂s/∂(start vertex)` and `∂s/∂(end vertex)`.
     pub ga: [f64; 2],
     pub gb: [f64; 2],
+}
+
+/// A pixel's sensitivity to a subtracted part's surface where it cuts the visible surface
+/// (the rim of a hollow): `∂M/∂sd`, `∂S/∂sd` with `sd` the signed distance (world units) of
+/// the visible point to that part's nearest face, whose material point and normal are given.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SurfaceEntry {
+    pub pixel: u32,
+    pub part: u32,
+    pub dm: f64,
+    pub ds: f64,
+    pub n: [f64; 3],
+    pub q: [f64; 3],
+    pub ldq: [f64; 3],
+}
+
+/// A view's gradient entries.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Entries {
+    pub edges: Vec<Entry>,
+    pub surfaces: Vec<SurfaceEntry>,
+}
+
+impl Entries {
+    pub fn extend(&mut self, other: Entries) {
+        self.edges.extend(other.edges);
+        self.surfaces.extend(other.surfaces);
+    }
 }
 
 /// Soft channels of a view: coverage and premultiplied shade.
@@ -120,17 +148,45 @@ impl HardImage {
     }
 }
 
-/// What one layer (an item at a pixel) contributes.
+/// What one layer (an item at a pixel) contributes: coverage `α` and premultiplied shade
+/// `P` (`α·shade` for a plain surface).
+///
+/// A split difference is one layer too: its first operand's front surface where it is
+/// kept (fraction `κ`) mixed with what the cut shows behind it (the cavity; nothing for a
+/// hole through): `α = a·(κ + (1 − κ)·c)`, `P = a·(κ·sh_f + (1 − κ)·c·sh_c)`.
 #[derive(Clone, Copy)]
 struct Layer {
     depth: f64,
     alpha: f64,
-    shade: f64,
+    premult: f64,
     item: u32,
-    /// `h`: zero inside a hole of a boolean item.
+    /// `h`: zero inside a hole of a boolean item (not split).
     keep: f64,
     /// The item's part states in the scratch.
     states: (u32, u32),
+    /// Whether this is a split difference (the fields below are used).
+    split: bool,
+    /// `a`, `κ`, `c` (1 if the cut shows a surface) and the two shades.
+    alpha_a: f64,
+    kappa: f64,
+    cavity: f64,
+    sh_front: f64,
+    sh_cavity: f64,
+    /// The subtracted parts near the front point, in the scratch.
+    negs: (u32, u32),
+}
+
+/// A subtracted part near a split difference's front point.
+#[derive(Clone, Copy)]
+struct Neg {
+    part: u32,
+    kappa: f64,
+    /// `∂κ/∂sd`.
+    dk: f64,
+    sp: SurfacePoint,
+    /// The part whose surface holds the front point, `∂sd/∂(its surface jacobian)`, and
+    /// that surface point.
+    front: Option<(u32, f64, SurfacePoint)>,
 }
 
 /// Per-thread buffers reused from pixel to pixel.
@@ -138,6 +194,7 @@ struct Layer {
 struct Scratch {
     layers: Vec<Layer>,
     states: Vec<(u32, PartAt)>,
+    negs: Vec<Neg>,
     mb: Vec<f64>,
     sb: Vec<f64>,
 }
@@ -220,13 +277,10 @@ impl PixelCtx<'_> {
     fn shade_of(&self, n_world: Vec3) -> (f64, Vec3) {
         let n = self.prep.frame.to_eye(n_world);
         let f = shade_features(n);
-        let v: f64 = self
-            .shade
-            .iter()
-            .zip(f.iter())
-            .take(NSHADE)
-            .map(|(s, x)| s * x)
-            .sum();
+        let mut v = 0.0;
+        for k in 0..NSHADE {
+            v += self.shade[k] * f[k];
+        }
         (v, n)
     }
 
@@ -235,7 +289,7 @@ impl PixelCtx<'_> {
         px: u32,
         py: u32,
         scratch: &mut Scratch,
-        entries: Option<&mut Vec<Entry>>,
+        entries: Option<&mut Entries>,
     ) -> PixelOut {
         let frame = &self.prep.frame;
         let u = [px as f64 + 0.5, py as f64 + 0.5];
@@ -244,11 +298,13 @@ impl PixelCtx<'_> {
         let Scratch {
             layers,
             states,
+            negs,
             mb,
             sb,
         } = scratch;
         layers.clear();
         states.clear();
+        negs.clear();
         let mut best_hard: Option<(f64, i32, Vec3)> = None;
         for (idx, item) in self.scene.items.iter().enumerate() {
             let Some(r) = self.prep.rects[idx] else {
@@ -264,16 +320,166 @@ impl PixelCtx<'_> {
             }
             let st = &states[first_state..];
             let get = |p: usize| st.iter().find(|(q, _)| *q as usize == p).map(|x| x.1);
+            let range = (first_state as u32, states.len() as u32);
             // The exact visible surface of the item.
             let visible: Option<(f64, Vec3)> = if item.is_single() {
                 st[0].1.hit.filter(|h| h.t0 > 0.0).map(|h| (h.t0, h.n0))
             } else {
                 visible_surface(&item.program, st)
             };
-            if let Some((t, n)) = visible
-                && best_hard.is_none_or(|b| t < b.0)
-            {
-                best_hard = Some((t, idx as i32, n));
+            if let Some((t, n)) = visible {
+                if best_hard.is_none_or(|b| t < b.0) {
+                    best_hard = Some((t, idx as i32, n));
+                }
+            }
+            let plain = Layer {
+                depth: 0.0,
+                alpha: 0.0,
+                premult: 0.0,
+                item: idx as u32,
+                keep: 1.0,
+                states: range,
+                split: false,
+                alpha_a: 1.0,
+                kappa: 1.0,
+                cavity: 0.0,
+                sh_front: 0.0,
+                sh_cavity: 0.0,
+                negs: (0, 0),
+            };
+            // The continuation of the first part's face past the silhouette.
+            let fallback = || {
+                let first = item.parts[0];
+                let g = &self.scene.parts[first];
+                let n = match get(first).and_then(|s| s.hit) {
+                    Some(h) => h.n0,
+                    None => g.near_normal(o, d),
+                };
+                (frame.depth(g.center), n)
+            };
+            if let Some((_, negatives)) = &item.split {
+                // A difference with soft cut edges: the first operand's front surface, kept
+                // where it is outside every subtracted part, and the cavity behind.
+                let pos = item.positive();
+                let front: Option<(f64, Vec3, usize)> = if pos.len() == 1 {
+                    st[0].1.hit.filter(|h| h.t0 > 0.0).map(|h| (h.t0, h.n0, 0))
+                } else {
+                    visible_surface_at(pos, st)
+                };
+                let alpha_a = match self.sigma {
+                    None => {
+                        if front.is_some() {
+                            1.0
+                        } else {
+                            0.0
+                        }
+                    }
+                    Some(_) => eval_soft(pos, &|p| get(p).map_or(0.0, |s| s.alpha), None).0,
+                };
+                if alpha_a <= 0.0 {
+                    states.truncate(first_state);
+                    continue;
+                }
+                let Some((ta, na, ka)) = front else {
+                    let (depth, n) = fallback();
+                    let sh = self.shade_of(n).0;
+                    layers.push(Layer {
+                        depth,
+                        alpha: alpha_a,
+                        premult: alpha_a * sh,
+                        ..plain
+                    });
+                    continue;
+                };
+                let pa = [o[0] + ta * d[0], o[1] + ta * d[1], o[2] + ta * d[2]];
+                // The front point as a material point of its part: the front moves with it.
+                let part_a = st[ka].0;
+                let sp_a = self.scene.parts[part_a as usize].surface_distance(pa);
+                let na_d = dot(na, d);
+                let first_neg = negs.len();
+                let mut kappa = 1.0;
+                let mut deepest: Option<(f64, usize)> = None;
+                for &b in negatives {
+                    let Some(sb_) = get(b) else { continue };
+                    let gb = &self.scene.parts[b];
+                    let kb = match self.sigma {
+                        None => {
+                            let inside = sb_.hit.is_some_and(|h| h.t0 <= ta && ta <= h.t1);
+                            if inside { 0.0 } else { 1.0 }
+                        }
+                        Some(sigma) => {
+                            let Some(sp) = gb.surface_distance(pa) else {
+                                continue;
+                            };
+                            let g = pixel_scale(frame, d, ta, na, sp.n);
+                            let s = sp.sd / g;
+                            if s >= CUTOFF * sigma {
+                                1.0
+                            } else if s <= -CUTOFF * sigma {
+                                0.0
+                            } else {
+                                let k = logistic(s / sigma);
+                                // ∂sd/∂(front offset): the front point slides along the ray.
+                                let along = if na_d.abs() > 1e-12 {
+                                    -dot(sp.n, d) / na_d
+                                } else {
+                                    0.0
+                                };
+                                negs.push(Neg {
+                                    part: b as u32,
+                                    kappa: k,
+                                    dk: k * (1.0 - k) / (sigma * g),
+                                    sp,
+                                    front: sp_a.map(|a| (part_a, along, a)),
+                                });
+                                k
+                            }
+                        }
+                    };
+                    kappa *= kb;
+                    if deepest.is_none_or(|(k, _)| kb < k) {
+                        deepest = Some((kb, b));
+                    }
+                }
+                let neg_range = (first_neg as u32, negs.len() as u32);
+                let sh_front = self.shade_of(na).0;
+                // What the cut shows: the solid after leaving the deepest subtracted part
+                // (nothing for a hole through); outside every subtracted part, the front.
+                let (cavity, sh_cavity) = if kappa < 1.0 {
+                    let exit = deepest
+                        .and_then(|(_, b)| get(b))
+                        .and_then(|s| s.hit)
+                        .filter(|h| h.t1 > ta);
+                    match exit {
+                        Some(h) => match first_solid_from(&item.program, st, h.t1) {
+                            Some((_, nc)) => (1.0, self.shade_of(nc).0),
+                            None => (0.0, 0.0),
+                        },
+                        None => (1.0, sh_front),
+                    }
+                } else {
+                    (1.0, sh_front)
+                };
+                let alpha = alpha_a * (kappa + (1.0 - kappa) * cavity);
+                if alpha > 0.0 {
+                    layers.push(Layer {
+                        depth: ta,
+                        alpha,
+                        premult: alpha_a * (kappa * sh_front + (1.0 - kappa) * cavity * sh_cavity),
+                        split: true,
+                        alpha_a,
+                        kappa,
+                        cavity,
+                        sh_front,
+                        sh_cavity,
+                        negs: neg_range,
+                        ..plain
+                    });
+                } else {
+                    states.truncate(first_state);
+                    negs.truncate(first_neg);
+                }
+                continue;
             }
             let (alpha, keep) = match self.sigma {
                 None => (if visible.is_some() { 1.0 } else { 0.0 }, 1.0),
@@ -301,24 +507,14 @@ impl PixelCtx<'_> {
             }
             let (depth, n_world) = match visible {
                 Some((t, n)) => (t, n),
-                None => {
-                    let first = item.parts[0];
-                    let g = &self.scene.parts[first];
-                    let n = match get(first).and_then(|s| s.hit) {
-                        Some(h) => h.n0,
-                        None => g.near_normal(o, d),
-                    };
-                    (frame.depth(g.center), n)
-                }
+                None => fallback(),
             };
-            let (shade, _) = self.shade_of(n_world);
             layers.push(Layer {
                 depth,
                 alpha,
-                shade,
-                item: idx as u32,
+                premult: alpha * self.shade_of(n_world).0,
                 keep,
-                states: (first_state as u32, states.len() as u32),
+                ..plain
             });
         }
         // Front-to-back compositing.
@@ -328,7 +524,7 @@ impl PixelCtx<'_> {
         let mut s = 0.0;
         let mut t = 1.0;
         for l in layers.iter() {
-            s += t * l.alpha * l.shade;
+            s += t * l.premult;
             m += t * l.alpha;
             t *= 1.0 - l.alpha;
         }
@@ -341,25 +537,36 @@ impl PixelCtx<'_> {
             for k in (0..n).rev() {
                 let l = &layers[k];
                 mb[k] = l.alpha + (1.0 - l.alpha) * mb[k + 1];
-                sb[k] = l.alpha * l.shade + (1.0 - l.alpha) * sb[k + 1];
+                sb[k] = l.premult + (1.0 - l.alpha) * sb[k + 1];
             }
             let mut tk = 1.0;
             let pixel = py * frame.width + px;
             for k in 0..n {
                 let l = layers[k];
+                // ∂M/∂α, ∂S/∂α and ∂S/∂P of this layer.
                 let dm_da = tk * (1.0 - mb[k + 1]);
-                let ds_da = tk * (l.shade - sb[k + 1]);
+                let ds_da = -tk * sb[k + 1];
+                let ds_dp = tk;
                 tk *= 1.0 - l.alpha;
-                if dm_da == 0.0 && ds_da == 0.0 {
+                if dm_da == 0.0 && ds_da == 0.0 && ds_dp == 0.0 {
                     continue;
                 }
                 let item = &self.scene.items[l.item as usize];
                 let mine = &states[l.states.0 as usize..l.states.1 as usize];
+                // How this layer's α and P depend on the (first operand's) coverage.
+                let (a_factor, p_factor) = if l.split {
+                    (
+                        l.kappa + (1.0 - l.kappa) * l.cavity,
+                        l.kappa * l.sh_front + (1.0 - l.kappa) * l.cavity * l.sh_cavity,
+                    )
+                } else {
+                    (1.0, l.premult / l.alpha)
+                };
+                let dm_dc = dm_da * a_factor;
+                let ds_dc = ds_da * a_factor + ds_dp * p_factor;
+                let program = item.positive();
                 for &(p, st) in mine {
-                    if !st.hull {
-                        continue;
-                    }
-                    if st.cov.n == 0 {
+                    if !st.hull || st.cov.n == 0 {
                         continue;
                     }
                     let da_item = if item.is_single() {
@@ -370,7 +577,7 @@ impl PixelCtx<'_> {
                                 .find(|(r, _)| *r as usize == q)
                                 .map_or(0.0, |x| x.1.alpha)
                         };
-                        eval_soft(&item.program, &get, Some(p as usize)).1 * l.keep
+                        eval_soft(program, &get, Some(p as usize)).1 * l.keep
                     };
                     if da_item == 0.0 {
                         continue;
@@ -381,15 +588,58 @@ impl PixelCtx<'_> {
                     for &(edge, dalpha_ds) in &st.cov.edges[..st.cov.n] {
                         let f = da_item * dalpha_ds;
                         let (ga, gb) = h.edge_gradient(edge as usize, u);
-                        entries.push(Entry {
+                        entries.edges.push(Entry {
                             pixel,
                             part: p,
                             edge,
-                            dm: dm_da * f,
-                            ds: ds_da * f,
+                            dm: dm_dc * f,
+                            ds: ds_dc * f,
                             ga,
                             gb,
                         });
+                    }
+                }
+                // Subtracted parts, through κ.
+                if !l.split {
+                    continue;
+                }
+                let dm_dk = dm_da * l.alpha_a * (1.0 - l.cavity);
+                let ds_dk = ds_da * l.alpha_a * (1.0 - l.cavity)
+                    + ds_dp * l.alpha_a * (l.sh_front - l.cavity * l.sh_cavity);
+                if dm_dk == 0.0 && ds_dk == 0.0 {
+                    continue;
+                }
+                for ng in &negs[l.negs.0 as usize..l.negs.1 as usize] {
+                    let others = if ng.kappa > 0.0 {
+                        l.kappa / ng.kappa
+                    } else {
+                        0.0
+                    };
+                    let f = others * ng.dk;
+                    if f == 0.0 {
+                        continue;
+                    }
+                    entries.surfaces.push(SurfaceEntry {
+                        pixel,
+                        part: ng.part,
+                        dm: dm_dk * f,
+                        ds: ds_dk * f,
+                        n: ng.sp.n,
+                        q: ng.sp.q,
+                        ldq: ng.sp.ldq,
+                    });
+                    if let Some((pa, along, spa)) = ng.front {
+                        if along != 0.0 {
+                            entries.surfaces.push(SurfaceEntry {
+                                pixel,
+                                part: pa,
+                                dm: dm_dk * f * along,
+                                ds: ds_dk * f * along,
+                                n: spa.n,
+                                q: spa.q,
+                                ldq: spa.ldq,
+                            });
+                        }
                     }
                 }
             }
@@ -408,9 +658,95 @@ impl PixelCtx<'_> {
     }
 }
 
+/// Pixel-space length of the gradient of a distance along normal `nb`, for a point that
+/// moves on the plane (normal `na`) hit at parameter `t` of the ray `d`: how many world
+/// units of that distance one pixel is.
+fn pixel_scale(frame: &Frame, d: Vec3, t: f64, na: Vec3, nb: Vec3) -> f64 {
+    let dd = dot(na, d);
+    let f = frame.focal;
+    let axes = [scale(frame.right, 1.0 / f), scale(frame.up, -1.0 / f)];
+    let mut g2 = 0.0;
+    for dv in axes {
+        let dp = if dd.abs() < 1e-12 {
+            // Grazing: the point slides along the ray; count the plain footprint.
+            if frame.ortho { dv } else { scale(dv, t) }
+        } else if frame.ortho {
+            let dt = -dot(na, dv) / dd;
+            [dv[0] + dt * d[0], dv[1] + dt * d[1], dv[2] + dt * d[2]]
+        } else {
+            let dt = -t * dot(na, dv) / dd;
+            [
+                t * dv[0] + dt * d[0],
+                t * dv[1] + dt * d[1],
+                t * dv[2] + dt * d[2],
+            ]
+        };
+        let c = dot(nb, dp);
+        g2 += c * c;
+    }
+    g2.sqrt().max(1e-12)
+}
+
+/// The first point at or after `t_start` where the item's solid begins (the point just
+/// after `t_start` counts: it shows the surface being left there, turned inward).
+fn first_solid_from(
+    program: &[super::scene::Op],
+    st: &[(u32, PartAt)],
+    t_start: f64,
+) -> Option<(f64, Vec3)> {
+    let index_of = |p: usize| st.iter().position(|(q, _)| *q as usize == p);
+    let mut inside: Vec<bool> = st
+        .iter()
+        .map(|(_, s)| s.hit.is_some_and(|h| h.t0 <= t_start && t_start < h.t1))
+        .collect();
+    let member =
+        |inside: &[bool]| eval_inside(program, &|p| index_of(p).is_some_and(|k| inside[k]));
+    if member(&inside) {
+        // Solid right after leaving a part at t_start: that part's exit surface, inward.
+        let k = st
+            .iter()
+            .position(|(_, s)| s.hit.is_some_and(|h| h.t1 == t_start))?;
+        let h = st[k].1.hit?;
+        return Some((t_start, [-h.n1[0], -h.n1[1], -h.n1[2]]));
+    }
+    let mut events: Vec<(f64, usize, bool)> = Vec::new();
+    for (k, (_, s)) in st.iter().enumerate() {
+        if let Some(h) = s.hit {
+            if h.t0 > t_start {
+                events.push((h.t0, k, true));
+            }
+            if h.t1 > t_start {
+                events.push((h.t1, k, false));
+            }
+        }
+    }
+    events.sort_by(|a, b| a.0.total_cmp(&b.0));
+    for &(t, k, entry) in &events {
+        inside[k] = entry;
+        if member(&inside) {
+            let h = st[k].1.hit?;
+            let n = if entry {
+                h.n0
+            } else {
+                [-h.n1[0], -h.n1[1], -h.n1[2]]
+            };
+            return Some((t, n));
+        }
+    }
+    None
+}
+
 /// The first point along the ray where a boolean item's solid begins, with its outward
 /// normal (an exit from a subtracted part shows that part's surface turned inward).
 fn visible_surface(program: &[super::scene::Op], st: &[(u32, PartAt)]) -> Option<(f64, Vec3)> {
+    visible_surface_at(program, st).map(|(t, n, _)| (t, n))
+}
+
+/// [`visible_surface`] with the state index of the part whose surface it is.
+fn visible_surface_at(
+    program: &[super::scene::Op],
+    st: &[(u32, PartAt)],
+) -> Option<(f64, Vec3, usize)> {
     let mut events: Vec<(f64, usize, bool)> = Vec::with_capacity(2 * st.len());
     let mut inside: Vec<bool> = vec![false; st.len()];
     for (k, (_, s)) in st.iter().enumerate() {
@@ -441,7 +777,7 @@ fn visible_surface(program: &[super::scene::Op], st: &[(u32, PartAt)]) -> Option
             } else {
                 [-h.n1[0], -h.n1[1], -h.n1[2]]
             };
-            return Some((t, n));
+            return Some((t, n, k));
         }
         was = now;
     }
@@ -456,7 +792,7 @@ pub fn render_view(
     sigma: Option<f64>,
     shade: [f64; NSHADE],
     want_entries: bool,
-) -> (SoftImage, HardImage, Vec<Entry>) {
+) -> (SoftImage, HardImage, Entries) {
     let (w, h) = (prep.frame.width, prep.frame.height);
     let ctx = PixelCtx {
         scene,
@@ -473,14 +809,13 @@ pub fn render_view(
             sp.1 = sp.1.max(r[2]);
         }
     }
-    #[allow(clippy::type_complexity)]
     let rows: Vec<(
         Vec<f32>,
         Vec<f32>,
         Vec<i32>,
         Vec<[f32; 3]>,
         Vec<f32>,
-        Vec<Entry>,
+        Entries,
     )> = (0..h)
         .into_par_iter()
         .map(|y| {
@@ -490,7 +825,7 @@ pub fn render_view(
             let mut item = vec![-1i32; n];
             let mut normal = vec![[0.0f32; 3]; n];
             let mut depth = vec![f32::INFINITY; n];
-            let mut entries = Vec::new();
+            let mut entries = Entries::default();
             let mut scratch = Scratch::default();
             let (x0, x1) = span[y as usize];
             {
@@ -521,7 +856,7 @@ pub fn render_view(
         normal: Vec::with_capacity(npx),
         depth: Vec::with_capacity(npx),
     };
-    let mut entries = Vec::new();
+    let mut entries = Entries::default();
     for (m, s, item, normal, depth, e) in rows {
         soft.m.extend(m);
         soft.s.extend(s);
@@ -537,7 +872,7 @@ pub fn render_view(
 pub fn theta_gradient(
     scene: &Scene,
     prep: &ViewPrep,
-    entries: &[Entry],
+    entries: &Entries,
     gm: &[f32],
     gs: &[f32],
 ) -> Vec<[f64; NTHETA]> {
@@ -550,7 +885,7 @@ pub fn theta_gradient(
                 .map_or(Vec::new(), |h| vec![[0.0; 2]; h.verts.len()])
         })
         .collect();
-    for e in entries {
+    for e in &entries.edges {
         let i = e.pixel as usize;
         let c = gm[i] as f64 * e.dm + gs[i] as f64 * e.ds;
         if c == 0.0 {
@@ -564,7 +899,19 @@ pub fn theta_gradient(
         v[b][0] += c * e.gb[0];
         v[b][1] += c * e.gb[1];
     }
-    accumulate_vertices(scene, prep, &dv)
+    let mut out = accumulate_vertices(scene, prep, &dv);
+    for e in &entries.surfaces {
+        let i = e.pixel as usize;
+        let c = gm[i] as f64 * e.dm + gs[i] as f64 * e.ds;
+        if c == 0.0 {
+            continue;
+        }
+        let j = surface_jacobian(e.n, e.q, e.ldq);
+        for (acc, jq) in out[e.part as usize].iter_mut().zip(j) {
+            *acc += c * jq;
+        }
+    }
+    out
 }
 
 /// Chains `∂loss/∂(hull vertex)` to `∂loss/∂θ`.

@@ -75,6 +75,19 @@ pub fn load(path: &Path) -> reparamc::ir::Model {
         .model
 }
 
+/// The model at `path` written with slot values `x` and evaluated again (what `fit -o`
+/// writes).
+pub fn fitted_model(path: &Path, base: &reparamc::ir::Model, x: &[f64]) -> reparamc::ir::Model {
+    let mut sources = reparamc::front::source::SourceMap::new();
+    let (loaded, _) = reparamc::load_model_parsed(&mut sources, path).unwrap();
+    let text = sources.text(loaded.main).to_string();
+    let written = reparamc::back::rewrite::with_slot_values(&text, loaded.main, &base.slots, x);
+    let mut s2 = reparamc::front::source::SourceMap::new();
+    reparamc::load_model_text(&mut s2, path, written.as_bytes())
+        .unwrap_or_else(|d| panic!("{}: fitted model: {}", path.display(), d.message))
+        .model
+}
+
 /// Result of one case.
 #[derive(Debug, Clone)]
 pub struct Outcome {
@@ -172,8 +185,8 @@ pub fn run_case(
         }
     }
     let iou_of = |x: &[f64]| {
-        let parts = base.parts_at(x).expect("affine parts");
-        reparamc::geom::iou((&parts, &base.csg), (&target.parts, &target.csg))
+        let fitted = fitted_model(&case.base, &base, x);
+        reparamc::geom::iou((&fitted.parts, &fitted.csg), (&target.parts, &target.csg))
     };
     if let Ok(dir) = std::env::var("GALLERY") {
         let mut imgs = Vec::new();
