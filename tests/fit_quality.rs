@@ -23,6 +23,15 @@ fn explore() {
     if let Ok(r) = std::env::var("SIG0") {
         opts.sigma.0 = r.parse().unwrap();
     }
+    if let Ok(r) = std::env::var("SHADING") {
+        opts.loss.shading = r.parse().unwrap();
+    }
+    if let Ok(r) = std::env::var("POLISH") {
+        opts.polish = r.parse().unwrap();
+    }
+    if std::env::var("REL").is_ok() {
+        opts.relative_steps = true;
+    }
     if std::env::var("ADAM").is_ok() {
         opts.optimizer = reparamc::fit::optimize::Optimizer::adam();
     }

@@ -37,6 +37,11 @@ pub struct FitOptions {
     pub max_step: f64,
     /// Match each view's shading to its target at the start of every round.
     pub fit_shading: bool,
+    /// Step each slot in units of its own magnitude (at least 5% of the model's size)
+    /// instead of the model's size.
+    pub relative_steps: bool,
+    /// Sweeps of face moves after the gradient rounds (see [`polish`]); 0: none.
+    pub polish: usize,
     /// Smallest world extent of a part, in units of the model's size.
     pub min_extent: f64,
     /// Coarse-to-fine: the first rounds render at `1/2^levels` of the targets' size and
@@ -62,11 +67,16 @@ impl Default for FitOptions {
             max_step: 0.02,
             fit_shading: true,
             min_extent: 0.002,
+            relative_steps: false,
+            polish: 0,
             levels: 0,
             pooled: true,
         }
     }
 }
+
+/// Floor of relative step scales, in units of the model's size.
+const RELATIVE_FLOOR: f64 = 0.05;
 
 /// What went wrong before fitting could start.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -101,6 +111,8 @@ pub struct Parametric {
     pub scale: f64,
     /// Fixed points per circle of each curved part's silhouette (see [`Parametric::fix_rings`]).
     pub rings: Vec<u32>,
+    /// Each part's face planes (axis, high side, affine form), for face moves.
+    pub faces: Vec<Vec<(u8, bool, Affine)>>,
 }
 
 impl Parametric {
@@ -122,6 +134,17 @@ impl Parametric {
             x0: model.slot_values(),
             scale: model.size().max(1e-9),
             rings: Vec::new(),
+            faces: {
+                let mut faces = vec![Vec::new(); model.parts.len()];
+                for f in crate::analysis::candidates::affine_features(model) {
+                    if let crate::ir::FeatureKind::Plane { axis, high } = f.kind
+                        && let Some(form) = f.forms.first()
+                    {
+                        faces[f.part].push((axis, high, form.clone()));
+                    }
+                }
+                faces
+            },
         }
     }
 
@@ -355,6 +378,72 @@ fn project_guards(guards: &[(Affine, f64)], space: &Space, y: &mut [f64]) {
     }
 }
 
+/// Face moves: for each part and each of its faces, try moving that face alone (the
+/// smallest change of slots that moves it and keeps the part's other faces) by 3% to 50% of
+/// the part's extent either way; keep a move when the loss drops. Gradients only see edges
+/// that are visible; this reaches faces hidden behind other parts (a shelf grown up into a
+/// table top) and sizes the loss barely sees. `sweeps` passes, or until nothing improves.
+pub fn polish(
+    problem: &Parametric,
+    mut x: Vec<f64>,
+    sweeps: usize,
+    loss: &mut dyn FnMut(&[f64]) -> f64,
+    ok: &dyn Fn(&[f64]) -> bool,
+) -> Vec<f64> {
+    let d = x.len();
+    let mut best = loss(&x);
+    for _ in 0..sweeps {
+        let mut improved = false;
+        for faces in &problem.faces {
+            if faces.len() < 2 {
+                continue;
+            }
+            let rows: Vec<&Affine> = faces.iter().map(|f| &f.2).collect();
+            let a = crate::analysis::linalg::matrix(&rows, d);
+            if a.iter().all(|v| *v == 0.0) {
+                continue;
+            }
+            let pinv = crate::analysis::linalg::pinv(&a);
+            for (j, &(axis, _, ref form)) in faces.iter().enumerate() {
+                let along: Vec<f64> = faces
+                    .iter()
+                    .filter(|f| f.0 == axis)
+                    .map(|f| f.2.eval(&x))
+                    .collect();
+                let extent = along.iter().fold(f64::NEG_INFINITY, |m, v| m.max(*v))
+                    - along.iter().fold(f64::INFINITY, |m, v| m.min(*v));
+                if extent.is_nan() || extent <= 0.0 || form.is_constant() {
+                    continue;
+                }
+                for frac in [-0.5, -0.25, -0.1, -0.03, 0.03, 0.1, 0.25, 0.5] {
+                    let mut b = nalgebra::DVector::zeros(faces.len());
+                    b[j] = frac * extent;
+                    let dx = &pinv * b;
+                    let cand: Vec<f64> = x.iter().zip(dx.iter()).map(|(a, b)| a + b).collect();
+                    // The move must actually move that face.
+                    if (form.eval(&cand) - form.eval(&x) - frac * extent).abs() > 1e-6 * extent {
+                        continue;
+                    }
+                    if !ok(&cand) {
+                        continue;
+                    }
+                    let l = loss(&cand);
+                    if l < best {
+                        best = l;
+                        x = cand;
+                        improved = true;
+                        break;
+                    }
+                }
+            }
+        }
+        if !improved {
+            break;
+        }
+    }
+    x
+}
+
 /// One stage of a fit: where it moves and for how many rounds. Each stage starts where the
 /// previous one ended.
 #[derive(Debug, Clone, PartialEq)]
@@ -433,10 +522,10 @@ pub fn fit(
     };
     let d = problem.x0.len();
     for st in stages {
-        if let Some(b) = &st.basis {
-            if b.nrows() != d {
-                return Err(FitError::Basis(b.nrows(), d));
-            }
+        if let Some(b) = &st.basis
+            && b.nrows() != d
+        {
+            return Err(FitError::Basis(b.nrows(), d));
         }
     }
     // Parts that start out drawable must stay so.
@@ -533,13 +622,25 @@ pub fn fit(
         }
         (opts.lambda * v, g)
     };
+    // Step scale per slot: the model's size, or (relative steps) the slot's own magnitude
+    // with a floor, so thin parts move in proportion.
+    let scales: Vec<f64> = problem
+        .x0
+        .iter()
+        .map(|&v| {
+            if opts.relative_steps {
+                v.abs().max(RELATIVE_FLOOR * problem.scale)
+            } else {
+                problem.scale
+            }
+        })
+        .collect();
     let mut x = problem.x0.clone();
     let mut round = 0;
     for stage in stages {
-        let space = Space {
-            x_base: nalgebra::DVector::from_column_slice(&x),
-            basis: stage.basis.clone(),
-            scale: problem.scale,
+        let space = match &stage.basis {
+            None => Space::slots(&x, &scales),
+            Some(n) => Space::subspace(&x, n.clone(), &scales),
         };
         let dim = space.dim();
         let mut y = vec![0.0; dim];
@@ -607,6 +708,22 @@ pub fn fit(
         x = space.x(&y);
     }
     refit_shades(backend, 0, &x, &mut shades);
+    if opts.polish > 0 {
+        let eval = |backend: &mut dyn Backend, x: &[f64]| -> f64 {
+            image_loss(backend, 0, x, opts.sigma.1, &shades, false).total() + reg(x).0
+        };
+        let ok = |x: &[f64]| {
+            x.iter().all(|v| v.is_finite())
+                && guards.iter().all(|(f, min)| f.eval(x) >= *min)
+                && problem
+                    .geoms(x)
+                    .iter()
+                    .zip(&drawable)
+                    .all(|(g, &was)| g.valid || !was)
+        };
+        x = polish(problem, x, opts.polish, &mut |x| eval(backend, x), &ok);
+        refit_shades(backend, 0, &x, &mut shades);
+    }
     let end_loss = image_loss(backend, 0, &x, opts.sigma.1, &shades, false).per_view;
     Ok(FitResult {
         x0: problem.x0.clone(),

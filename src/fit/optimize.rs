@@ -1,9 +1,11 @@
 //! Optimisers and the space they move in.
 //!
-//! The variables are `y`, with slots `x = x_base + scale·B·y`: in slot space `B` is the
-//! identity (so `y` is each slot's offset in units of the model's size, as the paper's
-//! unit-sized models have it); in a constraint subspace `B` is a basis `N` (d × d′) of the
-//! constraints' null space and `x_base` a particular point that satisfies them.
+//! The variables are `y`, with slots `x = x_base + D·B·y`: `D` scales each slot's step (the
+//! model's size for every slot, as the paper's unit-sized models have it, or each slot's own
+//! magnitude so a 2 mm board and a 150 mm height move alike in relative terms); in slot
+//! space `B` is the identity, in a constraint subspace an orthonormal basis of `D⁻¹·N` for
+//! `N` (d × d′) a basis of the constraints' null space, and `x_base` a point that satisfies
+//! them.
 
 use nalgebra::{DMatrix, DVector};
 
@@ -83,31 +85,49 @@ impl OptState {
     }
 }
 
-/// Where the optimiser moves: `x = x_base + scale·B·y`.
+/// Where the optimiser moves: `x = x_base + D·B·y`, with `D` a diagonal of per-slot step
+/// scales.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Space {
     pub x_base: DVector<f64>,
-    /// `None`: the identity (slot space).
+    /// `None`: the identity (slot space); otherwise orthonormal columns.
     pub basis: Option<DMatrix<f64>>,
-    pub scale: f64,
+    /// `D`: how far one unit of `y` moves each slot.
+    pub scales: DVector<f64>,
 }
 
 impl Space {
-    /// Every slot free.
-    pub fn slots(x0: &[f64], scale: f64) -> Space {
+    /// Every slot free, each moving `scales[i]` per unit of its variable.
+    pub fn slots(x0: &[f64], scales: &[f64]) -> Space {
         Space {
             x_base: DVector::from_column_slice(x0),
             basis: None,
-            scale,
+            scales: DVector::from_column_slice(scales),
         }
     }
 
-    /// Inside `x = particular + N·y'`: `basis` is `N` (d × d′), `particular` a point.
-    pub fn subspace(particular: &[f64], basis: DMatrix<f64>, scale: f64) -> Space {
+    /// Every slot free, all moving `scale` per unit.
+    pub fn uniform(x0: &[f64], scale: f64) -> Space {
+        Space::slots(x0, &vec![scale; x0.len()])
+    }
+
+    /// Inside `x = particular + N·z`: `basis` is `N` (d × d′) in slot units; the variables
+    /// are coordinates of an orthonormal basis of `D⁻¹·N`, so steps are even in scaled units.
+    pub fn subspace(particular: &[f64], basis: DMatrix<f64>, scales: &[f64]) -> Space {
+        let d = DVector::from_column_slice(scales);
+        let mut m = basis;
+        for (i, mut row) in m.row_iter_mut().enumerate() {
+            row /= d[i];
+        }
+        let q = if m.ncols() == 0 {
+            m
+        } else {
+            orthonormal_columns(&m)
+        };
         Space {
             x_base: DVector::from_column_slice(particular),
-            basis: Some(basis),
-            scale,
+            basis: Some(q),
+            scales: d,
         }
     }
 
@@ -117,22 +137,42 @@ impl Space {
     }
 
     pub fn x(&self, y: &[f64]) -> Vec<f64> {
-        let y = DVector::from_column_slice(y) * self.scale;
-        let x = match &self.basis {
-            None => &self.x_base + y,
-            Some(b) => &self.x_base + b * y,
+        let y = DVector::from_column_slice(y);
+        let step = match &self.basis {
+            None => y,
+            Some(b) => b * y,
         };
-        x.iter().copied().collect()
+        (&self.x_base + step.component_mul(&self.scales))
+            .iter()
+            .copied()
+            .collect()
     }
 
     /// `∂/∂y` from `∂/∂x`.
     pub fn grad_y(&self, gx: &[f64]) -> Vec<f64> {
-        let g = DVector::from_column_slice(gx) * self.scale;
+        let g = DVector::from_column_slice(gx).component_mul(&self.scales);
         match &self.basis {
             None => g.iter().copied().collect(),
             Some(b) => (b.transpose() * g).iter().copied().collect(),
         }
     }
+}
+
+/// An orthonormal basis of the column space of `m` (Gram–Schmidt via SVD's left vectors).
+fn orthonormal_columns(m: &DMatrix<f64>) -> DMatrix<f64> {
+    let svd = m.clone().svd(true, false);
+    let Some(u) = svd.u else {
+        return m.clone();
+    };
+    let smax = svd.singular_values.iter().fold(0.0f64, |a, &v| a.max(v));
+    let keep: Vec<usize> = (0..svd.singular_values.len())
+        .filter(|&i| svd.singular_values[i] > 1e-10 * smax.max(1e-300))
+        .collect();
+    let cols: Vec<DVector<f64>> = keep.iter().map(|&i| u.column(i).into_owned()).collect();
+    if cols.is_empty() {
+        return DMatrix::zeros(m.nrows(), 0);
+    }
+    DMatrix::from_columns(&cols)
 }
 
 /// An orthonormal basis of the null space of `c` (m × d): d × (d − rank).

@@ -117,6 +117,8 @@ pub fn case_cameras(
     size: u32,
     views: usize,
 ) -> Vec<Camera> {
+    // Framing the base and the target: the start must be in view (framed on the target
+    // alone, a base that is much larger reaches out of the pictures and the fit is lost).
     let (lo, hi) = union_bounds(base.bounds().unwrap(), target.bounds());
     default_views(lo, hi, views, size, size)
 }
@@ -165,6 +167,30 @@ pub fn run_case(
     )
     .unwrap_or_else(|e| panic!("{}: {e}", case.target.display()));
     let seconds = t0.elapsed().as_secs_f64();
+    if std::env::var("TRUTH").is_ok() {
+        // The loss at the true answer, for comparison with the fitted one.
+        let tp = Parametric::new(&target);
+        let t_opts = FitOptions {
+            rounds: 1,
+            iterations: 1,
+            ..opts.clone()
+        };
+        let r = fit(
+            &tp,
+            &cams,
+            &targets,
+            &[reparamc::fit::Stage::slots(1)],
+            backend,
+            &t_opts,
+            &mut |_| {},
+        )
+        .unwrap();
+        eprintln!(
+            "  loss at the truth {:.5}, at the fit {:.5}",
+            r.start_loss.iter().sum::<f64>(),
+            result.end_loss.iter().sum::<f64>()
+        );
+    }
     if std::env::var("SLOTS").is_ok() && base.slots.len() == target.slots.len() {
         for (i, sl) in base.slots.iter().enumerate() {
             let t = target.slots[i].value;
