@@ -50,6 +50,7 @@ pub struct Args {
     /// Weight of the pull towards the model's own numbers.
     #[arg(long, default_value_t = 0.001)]
     lambda: f64,
+    /// The optimiser (the paper's: SGD; Adam moves far targets faster).
     #[arg(long, value_enum, default_value_t = OptimizerArg::Sgd)]
     optimizer: OptimizerArg,
     /// Momentum of SGD.
@@ -67,9 +68,18 @@ pub struct Args {
     /// Weight of shading against the foreground mask.
     #[arg(long, default_value_t = 0.5)]
     shading: f64,
-    /// Coarse-to-fine levels (each halves the image size of the first rounds).
+    /// Coarse-to-fine levels: the first half of the rounds compares images pooled 2× per
+    /// level, one level finer at a time, so parts far from their place still feel it.
     #[arg(long, default_value_t = 0)]
     levels: u32,
+    /// Step each number in proportion to its own size (thin parts move in proportion)
+    /// instead of in units of the model's size.
+    #[arg(long)]
+    relative_steps: bool,
+    /// After the rounds, sweeps of single-face moves kept when the loss drops (reaches
+    /// faces hidden behind other parts).
+    #[arg(long, default_value_t = 0)]
+    polish: usize,
     /// Shrink target pictures so their longer side is at most this many pixels.
     #[arg(long)]
     max_size: Option<u32>,
@@ -207,6 +217,8 @@ pub fn run(args: Args) -> ExitCode {
             level: 0,
         },
         levels: args.levels,
+        relative_steps: args.relative_steps,
+        polish: args.polish,
         ..FitOptions::default()
     };
     let stages: Vec<Stage> = if args.subspace {
