@@ -19,6 +19,9 @@
 //! classifying the ray's segments. Two channels come out: coverage `M` and premultiplied
 //! shade `S`, where a surface's shade is a linear function of its eye-space normal.
 
+// Geometry here indexes several arrays by axis; index loops read best.
+#![allow(clippy::needless_range_loop)]
+
 use super::camera::{Frame, Vec3, cross, dot, norm, normalize};
 use crate::ir::{Affine, CsgNode, Part, Primitive};
 
@@ -715,10 +718,10 @@ pub fn items_of(csg: &CsgNode) -> Vec<Item> {
             }
             let mut parts: Vec<usize> = Vec::new();
             for op in &program {
-                if let Op::Part(i) = op {
-                    if !parts.contains(&(*i as usize)) {
-                        parts.push(*i as usize);
-                    }
+                if let Op::Part(i) = op
+                    && !parts.contains(&(*i as usize))
+                {
+                    parts.push(*i as usize);
                 }
             }
             let split = split_difference(&program);

@@ -10,6 +10,9 @@
 //! changes with the two hull vertices of the deciding edge. [`theta_gradient`] turns
 //! per-pixel loss derivatives and those entries into `∂loss/∂θ` for every part.
 
+// Geometry here indexes several arrays by axis; index loops read best.
+#![allow(clippy::needless_range_loop)]
+
 use super::camera::{Camera, Frame, Vec3, dot, scale};
 use super::scene::{
     CUTOFF, Coverage, Hull, NSHADE, NTHETA, PartGeom, Scene, SurfacePoint, eval_inside, eval_soft,
@@ -327,10 +330,10 @@ impl PixelCtx<'_> {
             } else {
                 visible_surface(&item.program, st)
             };
-            if let Some((t, n)) = visible {
-                if best_hard.is_none_or(|b| t < b.0) {
-                    best_hard = Some((t, idx as i32, n));
-                }
+            if let Some((t, n)) = visible
+                && best_hard.is_none_or(|b| t < b.0)
+            {
+                best_hard = Some((t, idx as i32, n));
             }
             let plain = Layer {
                 depth: 0.0,
@@ -628,18 +631,18 @@ impl PixelCtx<'_> {
                         q: ng.sp.q,
                         ldq: ng.sp.ldq,
                     });
-                    if let Some((pa, along, spa)) = ng.front {
-                        if along != 0.0 {
-                            entries.surfaces.push(SurfaceEntry {
-                                pixel,
-                                part: pa,
-                                dm: dm_dk * f * along,
-                                ds: ds_dk * f * along,
-                                n: spa.n,
-                                q: spa.q,
-                                ldq: spa.ldq,
-                            });
-                        }
+                    if let Some((pa, along, spa)) = ng.front
+                        && along != 0.0
+                    {
+                        entries.surfaces.push(SurfaceEntry {
+                            pixel,
+                            part: pa,
+                            dm: dm_dk * f * along,
+                            ds: ds_dk * f * along,
+                            n: spa.n,
+                            q: spa.q,
+                            ldq: spa.ldq,
+                        });
                     }
                 }
             }
@@ -784,6 +787,16 @@ fn visible_surface_at(
     None
 }
 
+/// One row of a view: coverage, shade, item, normal, depth, entries.
+type Row = (
+    Vec<f32>,
+    Vec<f32>,
+    Vec<i32>,
+    Vec<[f32; 3]>,
+    Vec<f32>,
+    Entries,
+);
+
 /// Renders one view: soft channels (hard edges when `sigma` is `None`), the hard surface,
 /// and (when asked) the gradient entries.
 pub fn render_view(
@@ -809,14 +822,7 @@ pub fn render_view(
             sp.1 = sp.1.max(r[2]);
         }
     }
-    let rows: Vec<(
-        Vec<f32>,
-        Vec<f32>,
-        Vec<i32>,
-        Vec<[f32; 3]>,
-        Vec<f32>,
-        Entries,
-    )> = (0..h)
+    let rows: Vec<Row> = (0..h)
         .into_par_iter()
         .map(|y| {
             let n = w as usize;
