@@ -1,18 +1,21 @@
 //! Where the stretch of a vertical line inside a shape stops being smooth.
 //!
 //! Volumes integrate `f(x, y)`, the length of the vertical line through `(x, y)` inside the
-//! solid, first along y (a *line*) and then along x. For one shape, `f` is analytic except
-//! where the line grazes the surface (the silhouette: a square-root edge), crosses an edge
-//! (a box edge, a frustum's cap rim: a kink or a jump) or passes the apex of a cone.
+//! solid, first along one horizontal axis (a *line*) and then along the other. For one
+//! shape, `f` is analytic except where the vertical line grazes the surface (the silhouette:
+//! a square-root edge), crosses an edge (a box edge, a frustum's cap rim: a kink or a jump)
+//! or passes the apex of a cone. Everything here works for either order (`x` then `y` or
+//! the reverse): axes are parameters.
 //!
-//! - [`Shape::x_breaks`]: the x values where the set of y break points of a line changes:
-//!   tight x bounds, box corners, the x extremes of cap rims, the ends of a cone's contour
-//!   generators (where the silhouette leaves a rim), apexes.
-//! - [`Shape::line_breaks`]: for one x, the y values where `f` is not smooth along the line:
-//!   bounds, edge crossings of a rotated box, rim crossings and silhouette points (roots of
-//!   the discriminant of the ray–quadric equation, a quadratic in y). The same curves cut
-//!   with a line of constant y give the x values where the shape's footprint crosses the
-//!   side of an integration cell, which are x breaks of that cell.
+//! - [`Shape::axis_breaks`]: the values of the outer coordinate where the set of break
+//!   points of a line changes: tight bounds, box corners, the extremes of cap rims, the ends
+//!   of a cone's contour generators (where the silhouette leaves a rim), apexes.
+//! - [`Shape::line_breaks`]: for one line, the values of the inner coordinate where `f` is
+//!   not smooth along it: bounds, edge crossings of a rotated box, rim crossings and
+//!   silhouette points (roots of the discriminant of the ray–quadric equation, a quadratic
+//!   along the line). The same curves cut with a line of the other family give where the
+//!   shape's footprint crosses the side of an integration cell, which are outer breaks of
+//!   that cell.
 //!
 //! Break points are candidates: extra ones cost a little time, never accuracy.
 
@@ -48,21 +51,22 @@ impl Shape {
         self.world([r * th.cos(), r * th.sin(), z])
     }
 
-    /// Pushes the x values where the shape's line structure changes.
-    pub fn x_breaks(&self, out: &mut Vec<f64>) {
-        out.extend([self.lo[0], self.hi[0]]);
+    /// Pushes the values of world coordinate `a` (0: x, 1: y) where the structure of the
+    /// shape's lines across that axis changes.
+    pub fn axis_breaks(&self, a: usize, out: &mut Vec<f64>) {
+        out.extend([self.lo[a], self.hi[a]]);
         match self.kind {
-            Kind::Box { .. } if !self.aligned => out.extend(self.corners.iter().map(|c| c[0])),
+            Kind::Box { .. } if !self.aligned => out.extend(self.corners.iter().map(|c| c[a])),
             Kind::Frustum { k, .. } => {
                 let d = [self.inv[0][2], self.inv[1][2], self.inv[2][2]];
                 for (z, r) in caps(&self.kind) {
                     let c = self.world([0.0, 0.0, z]);
                     if r == 0.0 {
-                        out.push(c[0]);
+                        out.push(c[a]);
                         continue;
                     }
-                    let reach = r * self.m[0][0].hypot(self.m[0][1]);
-                    out.extend([c[0] - reach, c[0] + reach]);
+                    let reach = r * self.m[a][0].hypot(self.m[a][1]);
+                    out.extend([c[a] - reach, c[a] + reach]);
                     // Contour generators end where the side's normal is horizontal on the rim:
                     // d_x cos θ + d_y sin θ = k d_z.
                     let rr = d[0].hypot(d[1]);
@@ -70,7 +74,7 @@ impl Shape {
                     if rr > 0.0 && cos.abs() <= 1.0 {
                         let (phi, delta) = (d[1].atan2(d[0]), cos.acos());
                         for th in [phi - delta, phi + delta] {
-                            out.push(self.rim_point(z, r, th)[0]);
+                            out.push(self.rim_point(z, r, th)[a]);
                         }
                     }
                 }

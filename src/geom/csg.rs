@@ -1,10 +1,13 @@
 //! Interval lists along one line, and the CSG tree flattened for evaluating them.
 //!
 //! An [`Iv`] is a stretch `t0 < t1` of a line inside a solid, with the surfaces ([`Surf`])
-//! that bound it. Every list this module produces is *sorted and disjoint*: `t1` of one
-//! interval is strictly below `t0` of the next (touching intervals are merged), and no
-//! interval is empty. Booleans: union merges, intersection keeps common stretches, difference
-//! cuts and flips the subtracted surfaces (their outward normals point into the result).
+//! that bound it. Every list this module produces is *sorted and disjoint* up to a tolerance
+//! `eps` (far below any feature, far above rounding): `t1` of one interval is more than `eps`
+//! below `t0` of the next (touching intervals are merged), and every interval is longer than
+//! `eps`. Booleans: union merges, intersection keeps common stretches, difference cuts and
+//! flips the subtracted surfaces (their outward normals point into the result). Ends within
+//! `eps` of each other are ordered by a canonical order of surfaces, so that coincident faces
+//! (parts stacked on each other) give the same structure on every ray.
 //!
 //! A [`Program`] is a CSG tree over shape indices in prefix order, each node knowing how many
 //! nodes its subtree spans, so a subtree can be skipped. An empty program is the empty solid.
@@ -24,6 +27,11 @@ pub(crate) struct Surf {
 }
 
 impl Surf {
+    /// A total order on surfaces, for breaking ties canonically.
+    pub fn key(self) -> u64 {
+        u64::from(self.shape) << 16 | u64::from(self.face) << 1 | u64::from(self.flip)
+    }
+
     fn flipped(self) -> Surf {
         Surf {
             flip: !self.flip,
@@ -111,11 +119,19 @@ impl Program {
 
     /// The same solid where only shapes with `active(shape)` exist.
     pub fn prune(&self, active: &dyn Fn(u32) -> bool) -> Program {
-        let mut out = Vec::with_capacity(self.nodes.len());
+        let mut out = Program {
+            nodes: Vec::with_capacity(self.nodes.len()),
+        };
+        self.prune_into(active, &mut out);
+        out
+    }
+
+    /// [`Program::prune`] into an existing program (reusing its storage).
+    pub fn prune_into(&self, active: &dyn Fn(u32) -> bool, out: &mut Program) {
+        out.nodes.clear();
         if !self.nodes.is_empty() {
-            self.prune_at(0, active, &mut out);
+            self.prune_at(0, active, &mut out.nodes);
         }
-        Program { nodes: out }
     }
 
     /// Emits the pruned subtree at `pos`; returns false (emitting nothing) when it is empty.
@@ -163,13 +179,20 @@ impl Program {
     }
 
     /// Appends the solid's intervals along a line to `buf`; `hit(shape)` gives one shape's.
-    pub fn eval(&self, hit: &mut impl FnMut(u32) -> Option<Iv>, buf: &mut Vec<Iv>) {
+    /// Ends closer than `eps` are one point: touching intervals merge, slivers vanish.
+    pub fn eval(&self, hit: &mut impl FnMut(u32) -> Option<Iv>, buf: &mut Vec<Iv>, eps: f64) {
         if !self.nodes.is_empty() {
-            self.eval_at(0, hit, buf);
+            self.eval_at(0, hit, buf, eps);
         }
     }
 
-    fn eval_at(&self, pos: usize, hit: &mut impl FnMut(u32) -> Option<Iv>, buf: &mut Vec<Iv>) {
+    fn eval_at(
+        &self,
+        pos: usize,
+        hit: &mut impl FnMut(u32) -> Option<Iv>,
+        buf: &mut Vec<Iv>,
+        eps: f64,
+    ) {
         let node = self.nodes[pos];
         let start = buf.len();
         let mut child = pos + 1;
@@ -177,25 +200,25 @@ impl Program {
             Op::Part(s) => buf.extend(hit(s)),
             Op::Union => {
                 for _ in 0..node.n {
-                    self.eval_at(child, hit, buf);
+                    self.eval_at(child, hit, buf, eps);
                     child += self.nodes[child].len as usize;
                 }
-                union_tail(buf, start);
+                union_tail(buf, start, eps);
             }
             Op::Inter | Op::Diff => {
-                self.eval_at(child, hit, buf);
+                self.eval_at(child, hit, buf, eps);
                 child += self.nodes[child].len as usize;
                 for _ in 1..node.n {
                     if buf.len() == start {
                         break;
                     }
                     let mid = buf.len();
-                    self.eval_at(child, hit, buf);
+                    self.eval_at(child, hit, buf, eps);
                     child += self.nodes[child].len as usize;
                     if node.op == Op::Inter {
-                        intersect_tail(buf, start, mid);
+                        intersect_tail(buf, start, mid, eps);
                     } else if buf.len() > mid {
-                        subtract_tail(buf, start, mid);
+                        subtract_tail(buf, start, mid, eps);
                     }
                 }
             }
@@ -203,19 +226,33 @@ impl Program {
     }
 }
 
+/// `a` comes before `b`: earlier by more than `eps`, or within `eps` and first in the
+/// canonical order of surfaces (so near-coincident ends are ordered the same way on every
+/// ray, however rounding falls).
+fn before(ta: f64, sa: Surf, tb: f64, sb: Surf, eps: f64) -> bool {
+    ta < tb - eps || (ta <= tb + eps && sa.key() < sb.key())
+}
+
 /// `buf[start..]` holds several sorted lists one after another; makes it their union.
-fn union_tail(buf: &mut Vec<Iv>, start: usize) {
+fn union_tail(buf: &mut Vec<Iv>, start: usize, eps: f64) {
     let v = &mut buf[start..];
     if v.len() <= 1 {
         return;
     }
-    v.sort_unstable_by(|a, b| a.t0.total_cmp(&b.t0));
+    // Insertion sort: unions along one ray are short.
+    for i in 1..v.len() {
+        let mut j = i;
+        while j > 0 && before(v[j].t0, v[j].s0, v[j - 1].t0, v[j - 1].s0, eps) {
+            v.swap(j - 1, j);
+            j -= 1;
+        }
+    }
     let mut w = 0;
     for r in 1..v.len() {
-        if v[r].t0 <= v[w].t1 {
-            if v[r].t1 > v[w].t1 {
-                v[w].t1 = v[r].t1;
-                v[w].s1 = v[r].s1;
+        if v[r].t0 <= v[w].t1 + eps {
+            // The later end wins; of two within eps, the canonical one.
+            if before(v[w].t1, v[r].s1, v[r].t1, v[w].s1, eps) {
+                (v[w].t1, v[w].s1) = (v[r].t1, v[r].s1);
             }
         } else {
             w += 1;
@@ -233,22 +270,23 @@ fn replace_with_tail(buf: &mut Vec<Iv>, start: usize, end: usize) {
 }
 
 /// `buf[start..mid] ∩ buf[mid..]`, left in `buf[start..]`.
-fn intersect_tail(buf: &mut Vec<Iv>, start: usize, mid: usize) {
+fn intersect_tail(buf: &mut Vec<Iv>, start: usize, mid: usize, eps: f64) {
     let end = buf.len();
     let (mut i, mut j) = (start, mid);
     while i < mid && j < end {
         let (a, b) = (buf[i], buf[j]);
-        let (t0, s0) = if a.t0 >= b.t0 {
+        // The later start and the earlier end.
+        let (t0, s0) = if before(b.t0, a.s0, a.t0, b.s0, eps) {
             (a.t0, a.s0)
         } else {
             (b.t0, b.s0)
         };
-        let (t1, s1) = if a.t1 <= b.t1 {
+        let (t1, s1) = if before(a.t1, a.s1, b.t1, b.s1, eps) {
             (a.t1, a.s1)
         } else {
             (b.t1, b.s1)
         };
-        if t0 < t1 {
+        if t1 - t0 > eps {
             buf.push(Iv { t0, t1, s0, s1 });
         }
         if a.t1 < b.t1 {
@@ -261,19 +299,19 @@ fn intersect_tail(buf: &mut Vec<Iv>, start: usize, mid: usize) {
 }
 
 /// `buf[start..mid] − buf[mid..]`, left in `buf[start..]`.
-fn subtract_tail(buf: &mut Vec<Iv>, start: usize, mid: usize) {
+fn subtract_tail(buf: &mut Vec<Iv>, start: usize, mid: usize, eps: f64) {
     let end = buf.len();
     let mut j = mid;
     for i in start..mid {
         let a = buf[i];
         let (mut cur, mut cs) = (a.t0, a.s0);
-        while j < end && buf[j].t1 <= cur {
+        while j < end && buf[j].t1 <= cur + eps {
             j += 1;
         }
         let mut k = j;
-        while k < end && buf[k].t0 < a.t1 {
+        while k < end && buf[k].t0 < a.t1 - eps {
             let b = buf[k];
-            if b.t0 > cur {
+            if b.t0 > cur + eps {
                 buf.push(Iv {
                     t0: cur,
                     t1: b.t0,
@@ -284,12 +322,12 @@ fn subtract_tail(buf: &mut Vec<Iv>, start: usize, mid: usize) {
             if b.t1 > cur {
                 (cur, cs) = (b.t1, b.s1.flipped());
             }
-            if b.t1 >= a.t1 {
+            if b.t1 >= a.t1 - eps {
                 break;
             }
             k += 1;
         }
-        if cur < a.t1 {
+        if cur < a.t1 - eps {
             buf.push(Iv {
                 t0: cur,
                 t1: a.t1,
@@ -357,6 +395,7 @@ mod tests {
         prog.eval(
             &mut |s| lists[s as usize].first().map(|&(a, b)| iv(a, b, s)),
             &mut buf,
+            0.0,
         );
         buf
     }

@@ -10,13 +10,18 @@
 //!   shapes, cutting at existing bounds so no new break lines appear) until a cell sees at
 //!   most [`LEAF`] shapes; each cell carries the CSG programs pruned to what it sees. A ray
 //!   then tests only the shapes of its cell, so cost grows with the model, not its square.
-//! - **Strips.** In a cell, the x breaks of its shapes (bounds, corners, rim extremes) cut it
-//!   into strips. A strip whose shapes are all axis-aligned boxes has an integrand that is
-//!   piecewise constant on rectangles: one line at the strip's middle, and along it one ray
-//!   per y cell, is *exact*. Other strips integrate `g(x) = ∫ f dy` adaptively (`quad`).
+//! - **Order.** In a cell, lines run along x or along y, whichever fewer of its shapes vary
+//!   along (a rail along x is constant on lines along x); below, "x" is the outer axis.
+//! - **Strips.** The x breaks of the cell's shapes (bounds, corners, rim extremes, where a
+//!   footprint crosses the cell's side) cut it into strips. A strip whose shapes are all
+//!   extrusions along x (axis-aligned boxes among them) looks the same on every line: one
+//!   line at its middle, and along it one ray per y cell, is *exact*. Other strips integrate
+//!   `g(x) = ∫ f dy` adaptively (`quad`), locating kinks where the set of kinds of stretch
+//!   met by the line changes.
 //! - **Lines.** Along a line the y breaks cut it into segments; a segment seen only by
-//!   aligned boxes takes one ray, others are integrated adaptively. Rays return a signature
-//!   (the merged order of every interval end) so kinks are found and split exactly.
+//!   extrusions along y or z (aligned boxes, upright cylinders) takes one ray, others are
+//!   integrated adaptively. Rays return a signature (the merged order of every interval end)
+//!   so kinks are found and split exactly.
 //!
 //! Invariants: the result is a sum of finite terms; the z clip and the xy domain bound the
 //! integral to the requested region; shapes with an empty footprint never enter a cell.
@@ -48,6 +53,8 @@ struct Integrator<'a> {
     /// The longest side of the domain: the scale of tolerances.
     size: f64,
     z: (f64, f64),
+    /// Interval ends closer than this are one point (see `csg`).
+    eps: f64,
     line_tol: Tol,
     area_tol: Tol,
     mask: Vec<bool>,
@@ -55,6 +62,11 @@ struct Integrator<'a> {
     ybreaks: Vec<f64>,
     /// Kinds of stretch met by the current line's rays.
     kinds: Vec<u64>,
+    /// The leaf's `(outer, inner)` axes: lines run along `inner`.
+    axes: (usize, usize),
+    /// Scratch: the shapes seen by a segment, and the programs pruned to them.
+    live: Vec<u32>,
+    segment_programs: [Program; 2],
 }
 
 /// `(|A|, |B|, |A ∩ B|)` inside the job's region.
@@ -81,6 +93,7 @@ pub(crate) fn integrate(job: &Job) -> V3 {
         shapes: job.shapes,
         size,
         z: (rmin[2], rmax[2]),
+        eps: 1e-12 * size,
         line_tol: Tol {
             rtol: 1e-10,
             atol_density: 1e-11 * size,
@@ -97,6 +110,9 @@ pub(crate) fn integrate(job: &Job) -> V3 {
         ivs: Vec::new(),
         ybreaks: Vec::new(),
         kinds: Vec::new(),
+        axes: (0, 1),
+        live: Vec::new(),
+        segment_programs: Default::default(),
     };
     let progs = it.restrict(job.programs, &ids);
     let rect = Rect {
@@ -183,36 +199,49 @@ impl Integrator<'_> {
         (4 * cost <= 3 * ids.len()).then_some((axis, at))
     }
 
-    /// `∫∫ f` over a leaf cell, strip by strip.
+    /// `∫∫ f` over a leaf cell, strip by strip, in the better order of the two axes.
     fn leaf(&mut self, r: Rect, ids: &[u32], progs: [&Program; 2]) -> V3 {
-        let mut xs = vec![r.lo[0], r.hi[0]];
+        // Lines run along the axis that the fewest shapes vary along (a rail along x makes
+        // lines along x constant where a line along y would have to be integrated).
+        let varying = |inner: usize| {
+            ids.iter()
+                .filter(|&&i| !(self.shape(i).prism[inner] || self.shape(i).prism[2]))
+                .count()
+        };
+        let (o, inner) = if varying(0) < varying(1) {
+            (1, 0)
+        } else {
+            (0, 1)
+        };
+        self.axes = (o, inner);
+        let mut cuts = vec![r.lo[o], r.hi[o]];
         for &i in ids {
             let s = self.shape(i);
-            s.x_breaks(&mut xs);
-            // Where a footprint's boundary crosses the cell's lower or upper side, the
+            s.axis_breaks(o, &mut cuts);
+            // Where a footprint's boundary crosses a side of the cell along the lines, the
             // integral over the cell has a kink.
-            for side in r.lo[1..].iter().chain(&r.hi[1..]) {
-                if !s.aligned && s.lo[1] < *side && *side < s.hi[1] {
-                    s.line_breaks(1, *side, &mut xs);
+            for side in [r.lo[inner], r.hi[inner]] {
+                if !s.aligned && s.lo[inner] < side && side < s.hi[inner] {
+                    s.line_breaks(inner, side, &mut cuts);
                 }
             }
         }
-        xs.retain(|&x| x >= r.lo[0] && x <= r.hi[0]);
-        xs.sort_unstable_by(f64::total_cmp);
+        cuts.retain(|&c| c >= r.lo[o] && c <= r.hi[o]);
+        cuts.sort_unstable_by(f64::total_cmp);
         // Breaks closer than rounding noise (a cos 90° of 6e-17) would only make slivers.
         let eps = 1e-14 * self.size;
-        xs.dedup_by(|b, a| *b - *a <= eps);
-        if let Some(last) = xs.last_mut() {
-            *last = r.hi[0];
+        cuts.dedup_by(|b, a| *b - *a <= eps);
+        if let Some(last) = cuts.last_mut() {
+            *last = r.hi[o];
         }
         let mut total = [0.0; 3];
         let mut strip = Vec::with_capacity(ids.len());
-        for w in xs.windows(2) {
-            let (xa, xb) = (w[0], w[1]);
+        for w in cuts.windows(2) {
+            let (ca, cb) = (w[0], w[1]);
             strip.clear();
             strip.extend(ids.iter().copied().filter(|&i| {
                 let s = self.shape(i);
-                s.lo[0] < xb && s.hi[0] > xa
+                s.lo[o] < cb && s.hi[o] > ca
             }));
             if strip.is_empty() {
                 continue;
@@ -223,71 +252,80 @@ impl Integrator<'_> {
                 Some([a, b]) => [a, b],
                 None => progs,
             };
-            // Extrusions along x (aligned boxes among them) look the same on every line.
-            let part = if strip.iter().all(|&i| self.shape(i).prism[0]) {
-                quad::scale(
-                    self.line(0.5 * (xa + xb), &r, &strip, progs, false).0,
-                    xb - xa,
-                )
+            // Extrusions across the strip (aligned boxes among them) look the same on every
+            // line of it.
+            let part = if strip.iter().all(|&i| self.shape(i).prism[o]) {
+                let mid = 0.5 * (ca + cb);
+                quad::scale(self.line(mid, &r, &strip, progs, false).0, cb - ca)
             } else {
                 let tol = self.area_tol;
-                let mut g = |x: f64| self.line(x, &r, &strip, progs, true);
-                quad::integrate(&mut g, xa, xb, &tol)
+                let mut g = |c: f64| self.line(c, &r, &strip, progs, true);
+                quad::integrate(&mut g, ca, cb, &tol)
             };
             total = quad::add(total, part);
         }
         total
     }
 
-    /// `∫ f(x, y) dy` across the cell, with a signature of the line's structure when
-    /// `structure` is set (else 0).
+    /// `∫ f` along the line at outer coordinate `c` across the cell, with a signature of
+    /// the line's structure when `structure` is set (else 0).
     fn line(
         &mut self,
-        x: f64,
+        c: f64,
         r: &Rect,
         ids: &[u32],
         progs: [&Program; 2],
         structure: bool,
     ) -> (V3, u64) {
+        let (o, inner) = self.axes;
         let mut ys = std::mem::take(&mut self.ybreaks);
         ys.clear();
-        ys.extend([r.lo[1], r.hi[1]]);
+        ys.extend([r.lo[inner], r.hi[inner]]);
         for &i in ids {
             let s = self.shape(i);
-            if x >= s.lo[0] && x <= s.hi[0] {
-                s.line_breaks(0, x, &mut ys);
+            if c >= s.lo[o] && c <= s.hi[o] {
+                s.line_breaks(o, c, &mut ys);
             }
         }
-        ys.retain(|&y| y >= r.lo[1] && y <= r.hi[1]);
+        ys.retain(|&y| y >= r.lo[inner] && y <= r.hi[inner]);
         ys.sort_unstable_by(f64::total_cmp);
         ys.dedup();
         self.kinds.clear();
         let mut total = [0.0; 3];
         for k in 0..ys.len().saturating_sub(1) {
             let (ya, yb) = (ys[k], ys[k + 1]);
-            // Extrusions along y or z (aligned boxes among them) are constant along a segment.
-            let (mut live, mut varying) = (false, false);
-            for &i in ids {
+            // Extrusions along the line or along z (aligned boxes among them) are constant
+            // along a segment.
+            let mut live = std::mem::take(&mut self.live);
+            live.clear();
+            live.extend(ids.iter().copied().filter(|&i| {
                 let s = self.shape(i);
-                if x >= s.lo[0] && x <= s.hi[0] && s.lo[1] < yb && s.hi[1] > ya {
-                    live = true;
-                    if !(s.prism[1] || s.prism[2]) {
-                        varying = true;
-                        break;
-                    }
+                c >= s.lo[o] && c <= s.hi[o] && s.lo[inner] < yb && s.hi[inner] > ya
+            }));
+            let varying = live.iter().any(|&i| {
+                let s = self.shape(i);
+                !(s.prism[inner] || s.prism[2])
+            });
+            let part = if live.is_empty() {
+                [0.0; 3]
+            } else if varying {
+                // Many rays: let them test only the segment's shapes.
+                let mut seg = std::mem::take(&mut self.segment_programs);
+                live.iter().for_each(|&i| self.mask[i as usize] = true);
+                for (p, out) in progs.iter().zip(seg.iter_mut()) {
+                    p.prune_into(&|s| self.mask[s as usize], out);
                 }
-            }
-            if !live {
-                continue;
-            }
-            let part = if varying {
+                live.iter().for_each(|&i| self.mask[i as usize] = false);
                 let tol = self.line_tol;
-                let mut f = |y: f64| self.sample(x, y, progs, true, structure);
-                quad::integrate(&mut f, ya, yb, &tol)
+                let mut f = |y: f64| self.sample(c, y, [&seg[0], &seg[1]], true, structure);
+                let v = quad::integrate(&mut f, ya, yb, &tol);
+                self.segment_programs = seg;
+                v
             } else {
                 let mid = 0.5 * (ya + yb);
-                quad::scale(self.sample(x, mid, progs, false, structure).0, yb - ya)
+                quad::scale(self.sample(c, mid, progs, false, structure).0, yb - ya)
             };
+            self.live = live;
             total = quad::add(total, part);
         }
         self.ybreaks = ys;
@@ -305,16 +343,18 @@ impl Integrator<'_> {
         (total, h.finish())
     }
 
-    /// `f(x, y)` for both solids; with `sig`, the signature of the ray's structure (else 0);
-    /// with `kinds`, the kinds of its stretches are collected for the line.
+    /// `f` at outer coordinate `c`, inner coordinate `t`, for both solids; with `sig`, the
+    /// signature of the ray's structure (else 0); with `kinds`, the kinds of its stretches
+    /// are collected for the line.
     fn sample(
         &mut self,
-        x: f64,
-        y: f64,
+        c: f64,
+        t: f64,
         progs: [&Program; 2],
         sig: bool,
         kinds: bool,
     ) -> (V3, u64) {
+        let (x, y) = if self.axes.0 == 0 { (c, t) } else { (t, c) };
         let shapes = self.shapes;
         let buf = &mut self.ivs;
         buf.clear();
@@ -334,9 +374,9 @@ impl Integrator<'_> {
                 },
             })
         };
-        progs[0].eval(&mut hit, buf);
+        progs[0].eval(&mut hit, buf, self.eps);
         let na = buf.len();
-        progs[1].eval(&mut hit, buf);
+        progs[1].eval(&mut hit, buf, self.eps);
         let (a, b) = buf.split_at(na);
         let (z0, z1) = self.z;
         let v = [
@@ -345,9 +385,14 @@ impl Integrator<'_> {
             clipped_common_len(a, b, z0, z1),
         ];
         if kinds {
-            push_kinds(a, b, z0, z1, &mut self.kinds);
+            push_kinds(a, b, self.z, self.eps, &mut self.kinds);
         }
-        (v, if sig { signature(a, b, z0, z1) } else { 0 })
+        let s = if sig {
+            signature(a, b, self.z, self.eps)
+        } else {
+            0
+        };
+        (v, s)
     }
 }
 
@@ -375,20 +420,12 @@ impl Hasher {
 /// where a difference starts to cut. Breaks of unrelated shapes crossing each other (a leg's
 /// rim passing the edge of a back high above it) change the order of stretches along the
 /// line but not this set, so they cost nothing.
-fn push_kinds(a: &[Iv], b: &[Iv], z0: f64, z1: f64, out: &mut Vec<u64>) {
-    let surf = |s: Surf| u64::from(s.shape) << 8 | u64::from(s.face) << 1 | u64::from(s.flip);
+fn push_kinds(a: &[Iv], b: &[Iv], z: (f64, f64), eps: f64, out: &mut Vec<u64>) {
+    const CLIP: u64 = u64::MAX >> 8;
     let mut push = |list: u64, iv: &Iv| {
-        if iv.t1.min(z1) > iv.t0.max(z0) {
-            let e0 = if iv.t0 < z0 {
-                u64::MAX >> 8
-            } else {
-                surf(iv.s0)
-            };
-            let e1 = if iv.t1 > z1 {
-                u64::MAX >> 8
-            } else {
-                surf(iv.s1)
-            };
+        if iv.t1.min(z.1) - iv.t0.max(z.0) > eps {
+            let e0 = if iv.t0 < z.0 + eps { CLIP } else { iv.s0.key() };
+            let e1 = if iv.t1 > z.1 - eps { CLIP } else { iv.s1.key() };
             let mut h = Hasher::new();
             [list, e0, e1].into_iter().for_each(|t| h.add(t));
             out.push(h.finish());
@@ -399,19 +436,18 @@ fn push_kinds(a: &[Iv], b: &[Iv], z0: f64, z1: f64, out: &mut Vec<u64>) {
     let (mut i, mut j) = (0, 0);
     while i < a.len() && j < b.len() {
         let (x, y) = (&a[i], &b[j]);
-        let (t0, s0) = if x.t0 >= y.t0 {
+        // The later start and the earlier end; of two within eps, A's.
+        let (t0, s0) = if x.t0 >= y.t0 - eps {
             (x.t0, x.s0)
         } else {
             (y.t0, y.s0)
         };
-        let (t1, s1) = if x.t1 <= y.t1 {
+        let (t1, s1) = if x.t1 <= y.t1 + eps {
             (x.t1, x.s1)
         } else {
             (y.t1, y.s1)
         };
-        if t0 < t1 {
-            push(2, &Iv { t0, t1, s0, s1 });
-        }
+        push(2, &Iv { t0, t1, s0, s1 });
         if x.t1 < y.t1 {
             i += 1;
         } else {
@@ -422,7 +458,9 @@ fn push_kinds(a: &[Iv], b: &[Iv], z0: f64, z1: f64, out: &mut Vec<u64>) {
 
 /// The end points of both lists and the clip planes, merged in order along the line, each
 /// named by its list, surface and side: equal signatures mean the same formula for `f`.
-fn signature(a: &[Iv], b: &[Iv], z0: f64, z1: f64) -> u64 {
+/// Ends within `eps` count as one point, ordered A, B, clip (each list is already more than
+/// `eps` apart inside), so coincident faces of A and B do not make the order flicker.
+fn signature(a: &[Iv], b: &[Iv], z: (f64, f64), eps: f64) -> u64 {
     let end = |v: &[Iv], k: usize| -> (f64, u64) {
         let iv = &v[k / 2];
         let (t, s) = if k.is_multiple_of(2) {
@@ -430,11 +468,10 @@ fn signature(a: &[Iv], b: &[Iv], z0: f64, z1: f64) -> u64 {
         } else {
             (iv.t1, iv.s1)
         };
-        let tok = u64::from(s.shape) << 16 | u64::from(s.face) << 4 | (k as u64 & 1) << 1;
-        (t, tok | u64::from(s.flip))
+        (t, s.key() << 1 | (k as u64 & 1))
     };
-    let clips = [(z0, 1u64 << 62), (z1, 1u64 << 62 | 1)];
-    let nclip = if z0.is_finite() || z1.is_finite() {
+    let clips = [(z.0, 1u64 << 62), (z.1, 1u64 << 62 | 1)];
+    let nclip = if z.0.is_finite() || z.1.is_finite() {
         2
     } else {
         0
@@ -446,10 +483,10 @@ fn signature(a: &[Iv], b: &[Iv], z0: f64, z1: f64) -> u64 {
         let ta = if i < na { end(a, i).0 } else { f64::INFINITY };
         let tb = if j < nb { end(b, j).0 } else { f64::INFINITY };
         let tc = if c < nclip { clips[c].0 } else { f64::INFINITY };
-        if i < na && ta <= tb && ta <= tc {
+        if i < na && ta <= tb + eps && ta <= tc + eps {
             h.add(end(a, i).1);
             i += 1;
-        } else if j < nb && tb <= tc {
+        } else if j < nb && tb <= tc + eps {
             h.add(end(b, j).1 | 1 << 63);
             j += 1;
         } else {

@@ -1,18 +1,19 @@
-//! Unit tests of the geometry module against closed-form volumes and ray hits.
+//! Unit tests of the geometry module: single primitives and small booleans against
+//! closed-form volumes and ray hits, degenerate input, and the helpers that build parts.
 
 use super::*;
 use crate::ir::{Num, Primitive, Transform};
 use std::f64::consts::PI;
 
-type M = [[f64; 4]; 3];
+pub(super) type M = [[f64; 4]; 3];
 
-const ID: M = [
+pub(super) const ID: M = [
     [1.0, 0.0, 0.0, 0.0],
     [0.0, 1.0, 0.0, 0.0],
     [0.0, 0.0, 1.0, 0.0],
 ];
 
-fn mul(a: &M, b: &M) -> M {
+pub(super) fn mul(a: &M, b: &M) -> M {
     std::array::from_fn(|i| {
         std::array::from_fn(|j| {
             let t = if j == 3 { a[i][3] } else { 0.0 };
@@ -21,20 +22,20 @@ fn mul(a: &M, b: &M) -> M {
     })
 }
 
-fn translate(v: [f64; 3]) -> M {
+pub(super) fn translate(v: [f64; 3]) -> M {
     let mut m = ID;
     (0..3).for_each(|i| m[i][3] = v[i]);
     m
 }
 
-fn scale(v: [f64; 3]) -> M {
+pub(super) fn scale(v: [f64; 3]) -> M {
     let mut m = ID;
     (0..3).for_each(|i| m[i][i] = v[i]);
     m
 }
 
 /// OpenSCAD's `rotate([ax, ay, az])`: Rz · Ry · Rx, degrees.
-fn rotate(deg: [f64; 3]) -> M {
+pub(super) fn rotate(deg: [f64; 3]) -> M {
     let [x, y, z] = deg.map(f64::to_radians);
     let rx = [
         [1.0, 0.0, 0.0, 0.0],
@@ -54,7 +55,7 @@ fn rotate(deg: [f64; 3]) -> M {
     mul(&rz, &mul(&ry, &rx))
 }
 
-fn part(primitive: Primitive, m: M) -> Part {
+pub(super) fn part(primitive: Primitive, m: M) -> Part {
     Part {
         name: String::new(),
         primitive,
@@ -67,7 +68,7 @@ fn part(primitive: Primitive, m: M) -> Part {
     }
 }
 
-fn cube(s: [f64; 3], center: bool, m: M) -> Part {
+pub(super) fn cube(s: [f64; 3], center: bool, m: M) -> Part {
     part(
         Primitive::Cube {
             size: s.map(Num::constant),
@@ -77,7 +78,7 @@ fn cube(s: [f64; 3], center: bool, m: M) -> Part {
     )
 }
 
-fn cyl(h: f64, r1: f64, r2: f64, center: bool, m: M) -> Part {
+pub(super) fn cyl(h: f64, r1: f64, r2: f64, center: bool, m: M) -> Part {
     let k = Num::constant;
     part(
         Primitive::Cylinder {
@@ -90,7 +91,7 @@ fn cyl(h: f64, r1: f64, r2: f64, center: bool, m: M) -> Part {
     )
 }
 
-fn sphere(r: f64, m: M) -> Part {
+pub(super) fn sphere(r: f64, m: M) -> Part {
     part(
         Primitive::Sphere {
             r: Num::constant(r),
@@ -99,20 +100,20 @@ fn sphere(r: f64, m: M) -> Part {
     )
 }
 
-fn union(n: usize) -> CsgNode {
+pub(super) fn union(n: usize) -> CsgNode {
     CsgNode::Union((0..n).map(CsgNode::Part).collect())
 }
 
-fn vol(parts: &[Part]) -> f64 {
+pub(super) fn vol(parts: &[Part]) -> f64 {
     volume(parts, &union(parts.len()))
 }
 
-fn close(a: f64, b: f64, rel: f64) -> bool {
+pub(super) fn close(a: f64, b: f64, rel: f64) -> bool {
     (a - b).abs() <= rel * b.abs().max(1e-300)
 }
 
 #[track_caller]
-fn assert_close(a: f64, b: f64, rel: f64) {
+pub(super) fn assert_close(a: f64, b: f64, rel: f64) {
     assert!(
         close(a, b, rel),
         "{a} vs {b} (rel {:e})",
@@ -120,12 +121,12 @@ fn assert_close(a: f64, b: f64, rel: f64) {
     );
 }
 
-fn frustum_volume(h: f64, r1: f64, r2: f64) -> f64 {
+pub(super) fn frustum_volume(h: f64, r1: f64, r2: f64) -> f64 {
     PI * h * (r1 * r1 + r1 * r2 + r2 * r2) / 3.0
 }
 
 /// Rotations that put a local axis along world x, y, z and three oblique directions.
-fn orientations() -> Vec<M> {
+pub(super) fn orientations() -> Vec<M> {
     vec![
         ID,
         rotate([0.0, 90.0, 0.0]),
@@ -369,109 +370,4 @@ fn overlap_and_iou_of_shifted_boxes() {
     let r = Aabb::new([0.0; 3], [1.5, 2.0, 1.0]);
     let o = overlap((&a, &u), (&b, &u), Some(r));
     assert_eq!((o.a, o.b, o.inter), (3.0, 1.0, 1.0));
-}
-
-/// A small chair: four legs (z cylinders), a seat, a back, a stretcher along x.
-fn chair() -> Vec<Part> {
-    let mut v = Vec::new();
-    for (x, y) in [(0.0, 0.0), (4.0, 0.0), (0.0, 4.0), (4.0, 4.0)] {
-        v.push(cyl(4.0, 0.3, 0.3, false, translate([x, y, 0.0])));
-    }
-    v.push(cube([5.0, 5.0, 0.5], false, translate([-0.5, -0.5, 4.0])));
-    v.push(cube([5.0, 0.5, 4.0], false, translate([-0.5, 4.0, 4.5])));
-    v.push(cyl(
-        4.0,
-        0.2,
-        0.2,
-        false,
-        mul(&translate([0.0, 0.0, 1.0]), &rotate([0.0, 90.0, 0.0])),
-    ));
-    v
-}
-
-#[test]
-fn incremental_iou_matches_full_iou() {
-    let a = chair();
-    let mut b = a.clone();
-    // Move the back and change a leg's radius.
-    b[5] = cube([5.0, 0.5, 3.0], false, translate([-0.5, 3.8, 4.5]));
-    b[1] = cyl(4.0, 0.4, 0.3, false, translate([4.0, 0.0, 0.0]));
-    let u = union(a.len());
-    let full = iou((&a, &u), (&b, &u));
-    let region = changed_region(&a, &b).unwrap();
-    assert!(region.contains(&Aabb::of_part(&b[5])) && region.contains(&Aabb::of_part(&a[1])));
-    let va = volume(&a, &u);
-    let local = iou_local((&a, &u), (&b, &u), &region, va);
-    assert!((full - local).abs() < 1e-9, "{full} vs {local}");
-    assert!(full < 0.9 && full > 0.6, "{full}");
-    // Nothing changed: an empty region, IoU 1.
-    let none = changed_region(&a, &a).unwrap();
-    assert!(none.is_empty());
-    assert_eq!(iou_local((&a, &u), (&a, &u), &none, va), 1.0);
-    assert!((iou((&a, &u), (&a, &u)) - 1.0).abs() < 1e-12);
-}
-
-#[test]
-fn chair_volume_is_sum_of_parts_minus_overlaps() {
-    let parts = chair();
-    let legs = 4.0 * PI * 0.09 * 4.0;
-    let seat = 12.5;
-    let back = 10.0;
-    // The stretcher runs from x = 0 to 4 at y = 0, z = 1: inside the two front legs for
-    // the half of their disks it crosses; what is outside them is its length minus the
-    // chord-weighted overlap, computed here by subtracting its intersection with the legs.
-    let stretcher = PI * 0.04 * 4.0;
-    let total = vol(&parts);
-    let s = vec![parts[6].clone(), parts[0].clone(), parts[1].clone()];
-    let inside = volume(
-        &s,
-        &CsgNode::Intersection(vec![
-            CsgNode::Part(0),
-            CsgNode::Union(vec![CsgNode::Part(1), CsgNode::Part(2)]),
-        ]),
-    );
-    assert_close(total, legs + seat + back + stretcher - inside, 1e-9);
-    assert!(inside > 0.0 && inside < stretcher / 4.0);
-}
-
-#[test]
-fn many_disjoint_parts_sum_exactly() {
-    let mut parts = Vec::new();
-    let mut expect = 0.0;
-    for i in 0..30 {
-        for j in 0..30 {
-            let (x, y) = (3.0 * i as f64, 3.0 * j as f64);
-            if (i + j) % 3 == 0 {
-                parts.push(cyl(2.0, 1.0, 0.5, false, translate([x, y, 0.0])));
-                expect += frustum_volume(2.0, 1.0, 0.5);
-            } else {
-                parts.push(cube([1.0, 2.0, 1.5], false, translate([x, y, 0.25])));
-                expect += 3.0;
-            }
-        }
-    }
-    // A floor slab under everything, touching every part.
-    parts.push(cube(
-        [100.0, 100.0, 1.0],
-        false,
-        translate([-5.0, -5.0, -1.0]),
-    ));
-    expect += 10000.0;
-    assert_close(vol(&parts), expect, 1e-10);
-}
-
-#[test]
-fn volume_in_region_clips() {
-    let s = vec![sphere(1.0, ID)];
-    let u = union(1);
-    let upper = Aabb::new([-5.0, -5.0, 0.0], [5.0, 5.0, 5.0]);
-    assert_close(volume_in(&s, &u, &upper), 2.0 / 3.0 * PI, 1e-9);
-    let quarter = Aabb::new([0.0, 0.0, -5.0], [5.0, 5.0, 5.0]);
-    assert_close(volume_in(&s, &u, &quarter), PI / 3.0, 1e-9);
-    let slab = Aabb::new([-5.0, -5.0, 0.5], [5.0, 5.0, 5.0]);
-    assert_close(
-        volume_in(&s, &u, &slab),
-        PI * (2.0 / 3.0 - 0.5 + 0.125 / 3.0),
-        1e-9,
-    );
 }
