@@ -306,12 +306,32 @@ impl Shape {
 
     /// Where the world line `o + t·d` is inside the shape.
     pub fn hit_ray(&self, o: [f64; 3], d: [f64; 3]) -> Option<Hit> {
-        if o.iter().chain(&d).any(|v| !v.is_finite()) || d == [0.0; 3] {
+        if o.iter().chain(&d).any(|v| !v.is_finite()) || d == [0.0; 3] || self.misses_bounds(o, d) {
             return None;
         }
         let lo = mat_vec(&self.inv, o);
         let lo = std::array::from_fn(|i| lo[i] + self.inv_o[i]);
         self.hit_local(lo, mat_vec(&self.inv, d))
+    }
+
+    /// True when the line cannot meet the (slightly grown) world bounds: most lines of a
+    /// large model are turned away here, before any transform.
+    fn misses_bounds(&self, o: [f64; 3], d: [f64; 3]) -> bool {
+        let (mut t0, mut t1) = (f64::NEG_INFINITY, f64::INFINITY);
+        for a in 0..3 {
+            let pad = 1e-9 * (self.hi[a] - self.lo[a]);
+            let (lo, hi) = (self.lo[a] - pad, self.hi[a] + pad);
+            if d[a] == 0.0 {
+                if o[a] < lo || o[a] > hi {
+                    return true;
+                }
+                continue;
+            }
+            let (ta, tb) = ((lo - o[a]) / d[a], (hi - o[a]) / d[a]);
+            t0 = t0.max(ta.min(tb));
+            t1 = t1.min(ta.max(tb));
+        }
+        t0 > t1
     }
 
     fn hit_local(&self, o: [f64; 3], d: [f64; 3]) -> Option<Hit> {
