@@ -9,10 +9,12 @@ use crate::analysis::candidates::{Candidate, Candidates};
 use crate::analysis::cutoff::{Cutoff, cutoff};
 use crate::analysis::discover::{Sample, Similarity, discover};
 use crate::analysis::names::name_free_variables;
+use crate::analysis::noise::{NoiseGate, noise_gate};
 use crate::analysis::optional::{Toggle, optional_parts, toggles};
 use crate::analysis::project::{Faces, project_onto};
 use crate::analysis::ranges::{Range, ranges};
 use crate::analysis::reparam::{Expression, Solution, anchor_rows_at, solve};
+use crate::analysis::tolerance::Tolerance;
 use crate::analysis::{find_candidates, prior};
 use crate::back::emit::{Blend, EmitPlan, Slider, Switch, emit, number};
 use crate::front::ast::{ExprKind, StmtKind};
@@ -131,6 +133,21 @@ pub struct VariationReport {
     pub projection_iou: f64,
 }
 
+/// One chosen relation and the evidence for it.
+#[derive(Debug, Clone, Serialize)]
+pub struct ChosenRelation {
+    pub relation: String,
+    /// "structural" (the prior's kind), "other", or "beyond noise" (some variation breaks it).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tier: Option<&'static str>,
+    /// Its largest residual over the variations (world units).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub residual: Option<f64>,
+    /// The largest loss of IoU its step caused in one variation.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub worst_loss: Option<f64>,
+}
+
 #[derive(Debug, Clone, Serialize)]
 pub struct Report {
     pub model: String,
@@ -139,7 +156,9 @@ pub struct Report {
     /// How the kept constraints were chosen.
     pub method: String,
     /// Chosen constraints in order (all greedy steps, with variations).
-    pub chosen: Vec<String>,
+    pub chosen: Vec<ChosenRelation>,
+    /// The variations' estimated noise (world units) and the gate it sets.
+    pub noise: Option<NoiseGate>,
     pub kept_count: usize,
     pub cutoff: Option<Cutoff>,
     pub distortion_curve: Vec<f64>,
@@ -403,6 +422,27 @@ fn toggle_name(model: &Model, t: &Toggle, taken: &HashSet<String>) -> (String, S
     (name, description)
 }
 
+/// The tier of relations some variation breaks beyond its noise: never kept.
+const DEFERRED: u8 = 2;
+const TIER_NAMES: [&str; 3] = ["structural", "other", "beyond noise"];
+
+/// Discovery's order of preference: relations that hold a design together (the structural
+/// prior) first, other relations the variations keep within their noise next, relations they
+/// break last. Under noise IoU alone cannot separate an accidental equality of two unrelated
+/// sizes from the real ones; the prior breaks the tie the way a designer would.
+fn discovery_tiers(model: &Model, candidates: &Candidates, deferred: &[bool]) -> Vec<u8> {
+    let mut tiers = vec![1u8; candidates.list.len()];
+    for i in prior::structural_prior(model, candidates) {
+        tiers[i] = 0;
+    }
+    for (t, &d) in tiers.iter_mut().zip(deferred) {
+        if d {
+            *t = DEFERRED;
+        }
+    }
+    tiers
+}
+
 /// Runs the main job on a loaded model.
 pub fn reparameterize(
     sources: &SourceMap,
@@ -436,7 +476,7 @@ pub fn reparameterize(
         })
         .collect();
     let toggle_groups = toggles(model.parts.len(), &optional);
-    let (kept_idx, method, chosen_text, cut, curve) = if variations.is_empty() {
+    let (kept_idx, method, chosen_text, cut, curve, noise) = if variations.is_empty() {
         let kept: Vec<usize> = if options.all_constraints {
             (0..candidates.list.len()).collect()
         } else {
@@ -449,9 +489,14 @@ pub fn reparameterize(
         };
         let text = kept
             .iter()
-            .map(|&i| candidates.describe(&candidates.list[i]))
+            .map(|&i| ChosenRelation {
+                relation: candidates.describe(&candidates.list[i]),
+                tier: None,
+                residual: None,
+                worst_loss: None,
+            })
             .collect();
-        (kept, method, text, None, Vec::new())
+        (kept, method, text, None, Vec::new(), None)
     } else {
         let samples: Vec<Sample> = values
             .iter()
@@ -461,12 +506,21 @@ pub fn reparameterize(
                 optional: o.clone(),
             })
             .collect();
-        let disc = discover(&faces, &candidates, &samples, d, &sim);
-        let c = cutoff(&disc.curve, DISTORTION_TOLERANCE);
+        let gate = noise_gate(&candidates, &samples, Tolerance::for_size(model.size()));
+        let tiers = discovery_tiers(model, &candidates, &gate.deferred);
+        let disc = discover(&faces, &candidates, &samples, d, &sim, &tiers);
+        let plausible = disc.tiers.iter().take_while(|&&t| t < DEFERRED).count();
+        let c = cutoff(&disc.curve, DISTORTION_TOLERANCE, plausible);
         let text = disc
             .order
             .iter()
-            .map(|&i| candidates.describe(&candidates.list[i]))
+            .zip(disc.tiers.iter().zip(&disc.worst))
+            .map(|(&i, (&t, &w))| ChosenRelation {
+                relation: candidates.describe(&candidates.list[i]),
+                tier: Some(TIER_NAMES[t as usize]),
+                residual: Some(gate.residual[i]),
+                worst_loss: Some(w),
+            })
             .collect();
         let kept = disc.order[..c.keep].to_vec();
         (
@@ -475,6 +529,7 @@ pub fn reparameterize(
             text,
             Some(c),
             disc.curve,
+            Some(gate),
         )
     };
     let kept: Vec<Candidate> = kept_idx
@@ -634,6 +689,7 @@ pub fn reparameterize(
         base_constraint_count: candidates.total(),
         method,
         chosen: chosen_text,
+        noise,
         kept_count: kept.len(),
         cutoff: cut,
         distortion_curve: curve,

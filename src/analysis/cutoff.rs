@@ -55,10 +55,29 @@ fn derivative(curve: &[f64]) -> Vec<f64> {
         .collect()
 }
 
+/// How many times the typical step a step may cost before it counts as past the jump.
+pub const OUTLIER_FACTOR: f64 = 3.0;
+
+/// Below this a step's distortion is exact-arithmetic noise, never a jump.
+pub const STEP_FLOOR: f64 = 1e-3;
+
+/// Whether a step's increment stands out from the `earlier` ones (their median).
+fn is_outlier(increment: f64, earlier: &[f64]) -> bool {
+    let mut e = earlier.to_vec();
+    e.sort_by(f64::total_cmp);
+    let median = match e.len() {
+        0 => 0.0,
+        n if n % 2 == 1 => e[n / 2],
+        n => 0.5 * (e[n / 2 - 1] + e[n / 2]),
+    };
+    increment > STEP_FLOOR && increment > OUTLIER_FACTOR * median
+}
+
 /// Decides how many chosen constraints to keep from the distortion `curve`
 /// (`curve[s]` after `s` constraints). `tolerance` is the distortion the variations' own
-/// noise explains: a curve that never exceeds it keeps everything.
-pub fn cutoff(curve: &[f64], tolerance: f64) -> Cutoff {
+/// noise explains: a curve that never exceeds it keeps everything. Only the first `plausible`
+/// steps may be kept (later ones took relations the variations break beyond their noise).
+pub fn cutoff(curve: &[f64], tolerance: f64, plausible: usize) -> Cutoff {
     let steps = curve.len().saturating_sub(1);
     if steps == 0 {
         return Cutoff {
@@ -76,7 +95,7 @@ pub fn cutoff(curve: &[f64], tolerance: f64) -> Cutoff {
     let max = curve.iter().copied().fold(0.0, f64::max);
     if max <= tolerance {
         return Cutoff {
-            keep: steps,
+            keep: steps.min(plausible),
             paper,
             published,
             reason: format!(
@@ -84,20 +103,38 @@ pub fn cutoff(curve: &[f64], tolerance: f64) -> Cutoff {
             ),
         };
     }
-    // Never keep a step whose distortion is already past the jump.
-    let mut keep = paper;
-    while keep > 0 && curve[keep] > tolerance && curve[keep] - curve[keep - 1] > tolerance {
+    // The last step kept must look like the steps before it: under noise the curve rises
+    // all along, and the change point can land one step past the first relation that
+    // fights the variations.
+    let increments: Vec<f64> = curve.windows(2).map(|w| w[1] - w[0]).collect();
+    let mut keep = paper.min(plausible);
+    while keep > 0 && is_outlier(increments[keep - 1], &increments[..keep - 1]) {
         keep -= 1;
+    }
+    let mut reason = format!(
+        "the distortion's derivative jumps after {paper} constraints (distortion {:.4} there, {:.4} one step later)",
+        curve[paper],
+        curve.get(paper + 1).copied().unwrap_or(curve[paper])
+    );
+    if plausible < paper {
+        reason += &format!("; only the first {plausible} keep every variation within its noise");
+    }
+    if keep < paper.min(plausible) {
+        let last = paper.min(plausible);
+        let which = if keep + 1 == last {
+            format!("step {last} costs")
+        } else {
+            format!("steps {} to {last} cost", keep + 1)
+        };
+        reason += &format!(
+            "; {which} more than {OUTLIER_FACTOR} times the typical step, so {keep} are kept"
+        );
     }
     Cutoff {
         keep,
         paper,
         published,
-        reason: format!(
-            "the distortion's derivative jumps after {keep} constraints (distortion {:.4} there, {:.4} one step later)",
-            curve[keep],
-            curve.get(keep + 1).copied().unwrap_or(curve[keep])
-        ),
+        reason,
     }
 }
 
@@ -114,13 +151,30 @@ mod tests {
         for i in 0..10 {
             curve.push(0.3 + 0.05 * i as f64);
         }
-        let c = cutoff(&curve, 0.01);
+        let c = cutoff(&curve, 0.01, usize::MAX);
         assert_eq!(c.keep, 20, "{c:?}");
     }
 
     #[test]
     fn keeps_everything_when_nothing_fights() {
         let curve: Vec<f64> = (0..30).map(|i| 1e-6 * i as f64).collect();
-        assert_eq!(cutoff(&curve, 0.01).keep, 29);
+        assert_eq!(cutoff(&curve, 0.01, usize::MAX).keep, 29);
+        assert_eq!(cutoff(&curve, 0.01, 12).keep, 12);
+    }
+
+    #[test]
+    fn under_noise_the_step_into_the_jump_is_not_kept() {
+        // Every step costs about 0.01 (noise); step 21 costs 0.05 and step 22 jumps.
+        let mut curve = vec![0.0];
+        for i in 1..=20 {
+            curve.push(0.01 * i as f64);
+        }
+        curve.push(0.25);
+        for i in 0..5 {
+            curve.push(0.6 + 0.1 * i as f64);
+        }
+        let c = cutoff(&curve, 0.01, usize::MAX);
+        assert_eq!(c.keep, 20, "{c:?}");
+        assert_eq!(cutoff(&curve, 0.01, 15).keep, 15);
     }
 }

@@ -48,6 +48,11 @@ pub struct Discovery {
     pub curve: Vec<f64>,
     /// For each step, the candidates that became implied (dropped by the rank test).
     pub implied: Vec<Vec<usize>>,
+    /// The tier of each step's choice (see [`discover`]).
+    pub tiers: Vec<u8>,
+    /// For each step, the largest loss of similarity it caused in one variation
+    /// (1 − similarity of its projection to the previous step's point).
+    pub worst: Vec<f64>,
 }
 
 /// All rows of a candidate, dense.
@@ -72,12 +77,18 @@ fn implied(basis: &RowBasis, rows: &[&Affine], d: usize) -> bool {
 }
 
 /// Runs the greedy selection to the end (every candidate chosen or implied).
+///
+/// `tiers[c]` ranks candidate `c` by prior plausibility (0 first): each step takes the best
+/// score among the remaining candidates of the lowest tier, so a relation the variations
+/// break beyond their noise (`noise`) waits until every plausible one is taken, whatever its
+/// IoU. With every tier equal this is the paper's greedy.
 pub fn discover<S: Similarity>(
     faces: &Faces,
     candidates: &Candidates,
     samples: &[Sample],
     slots: usize,
     sim: &S,
+    tiers: &[u8],
 ) -> Discovery {
     let d = slots;
     let mut basis = RowBasis::default();
@@ -93,6 +104,8 @@ pub fn discover<S: Similarity>(
         scores: Vec::new(),
         curve: vec![0.0],
         implied: Vec::new(),
+        tiers: Vec::new(),
+        worst: Vec::new(),
     };
     let scale = samples
         .iter()
@@ -111,8 +124,9 @@ pub fn discover<S: Similarity>(
             .zip(samples)
             .map(|(x, s)| sim.reference(x.as_slice(), &s.optional))
             .collect();
+        let tier = remaining.iter().map(|&c| tiers[c]).min().unwrap_or(0);
         let mut best: Option<(f64, usize)> = None;
-        for &c in &remaining {
+        for &c in remaining.iter().filter(|&&c| tiers[c] == tier) {
             let rows = rows_of(candidates, c);
             let fresh = cache.contains_key(&c) && !touches(&rows, &dirty);
             let score = if fresh {
@@ -151,6 +165,19 @@ pub fn discover<S: Similarity>(
                 }
             }
         }
+        let worst = projected
+            .iter()
+            .zip(&current)
+            .zip(&references)
+            .map(|((y, x), r)| {
+                if moved(y, x, scale) {
+                    1.0 - sim.similarity_to(y.as_slice(), r)
+                } else {
+                    0.0
+                }
+            })
+            .fold(0.0, f64::max);
+        out.worst.push(worst);
         for r in rows {
             basis.add(&dense(r, d));
         }
@@ -163,6 +190,7 @@ pub fn discover<S: Similarity>(
             / samples.len() as f64;
         out.order.push(c);
         out.scores.push(score);
+        out.tiers.push(tier);
         out.curve.push(1.0 - mean);
         let (gone, keep): (Vec<usize>, Vec<usize>) = remaining
             .into_iter()

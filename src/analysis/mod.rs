@@ -9,6 +9,7 @@ pub mod cutoff;
 pub mod discover;
 pub mod linalg;
 pub mod names;
+pub mod noise;
 pub mod optional;
 pub mod prior;
 pub mod project;
