@@ -176,16 +176,28 @@ impl Projector {
         Projector { k }
     }
 
-    /// `x` moved (within the chosen constraints) so that the `rows` also hold.
+    /// `x` moved (within the chosen constraints) so that the `rows` also hold. Rows are
+    /// sparse (a few slots each), so `K nᵀ` is a combination of a few columns of `K`.
     pub fn project(&self, x: &DVector<f64>, rows: &[&Affine]) -> DVector<f64> {
         if rows.is_empty() {
             return x.clone();
         }
         let d = x.len();
-        let n = DMatrix::from_fn(rows.len(), d, |i, j| rows[i].coeff(j as u32));
+        let mut kn = DMatrix::zeros(d, rows.len());
+        for (i, r) in rows.iter().enumerate() {
+            let mut col = kn.column_mut(i);
+            for &(s, a) in &r.terms {
+                col.axpy(a, &self.k.column(s as usize), 1.0);
+            }
+        }
+        let m = DMatrix::from_fn(rows.len(), rows.len(), |i, j| {
+            rows[i]
+                .terms
+                .iter()
+                .map(|&(s, a)| a * kn[(s as usize, j)])
+                .sum::<f64>()
+        });
         let e = DVector::from_fn(rows.len(), |i, _| rows[i].eval(x.as_slice()));
-        let kn = &self.k * n.transpose();
-        let m = &n * &kn;
         x - kn * (linalg::pinv(&m) * e)
     }
 }
