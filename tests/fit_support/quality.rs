@@ -1,8 +1,7 @@
 //! The fitting quality table: every example model, fitted from its base to targets that
 //! OpenSCAD rendered of each of its variants, scored by exact 3-D IoU.
 //!
-//! Shared by `benches/fit_quality.rs` (the whole table) and `tests/fit_quality.rs` (a fast
-//! subset).
+//! Used by `benches/fit_quality.rs` (the whole table; one case under `cargo test`).
 
 #![allow(dead_code)]
 
