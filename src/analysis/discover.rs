@@ -8,7 +8,7 @@
 //! afterwards (`cutoff`).
 
 use super::candidates::Candidates;
-use super::project::{Faces, Projector, RowBasis, dense};
+use super::project::{Faces, Projector, RowBasis};
 use crate::ir::Affine;
 use nalgebra::DVector;
 use std::collections::{HashMap, HashSet};
@@ -55,7 +55,7 @@ pub struct Discovery {
     pub worst: Vec<f64>,
 }
 
-/// All rows of a candidate, dense.
+/// All rows of a candidate.
 fn rows_of(c: &Candidates, i: usize) -> Vec<&Affine> {
     c.list[i].rows.iter().collect()
 }
@@ -72,8 +72,8 @@ fn touches(rows: &[&Affine], dirty: &HashSet<u32>) -> bool {
     rows.iter().any(|r| r.slots().any(|s| dirty.contains(&s)))
 }
 
-fn implied(basis: &RowBasis, rows: &[&Affine], d: usize) -> bool {
-    rows.iter().all(|r| basis.contains(&dense(r, d)))
+fn implied(basis: &RowBasis, rows: &[&Affine]) -> bool {
+    rows.iter().all(|r| basis.contains_terms(&r.terms))
 }
 
 /// Runs the greedy selection to the end (every candidate chosen or implied).
@@ -93,7 +93,7 @@ pub fn discover<S: Similarity>(
     let d = slots;
     let mut basis = RowBasis::default();
     let mut remaining: Vec<usize> = (0..candidates.list.len())
-        .filter(|&i| !implied(&basis, &rows_of(candidates, i), d))
+        .filter(|&i| !implied(&basis, &rows_of(candidates, i)))
         .collect();
     let mut current: Vec<DVector<f64>> = samples
         .iter()
@@ -179,7 +179,7 @@ pub fn discover<S: Similarity>(
             .fold(0.0, f64::max);
         out.worst.push(worst);
         for r in rows {
-            basis.add(&dense(r, d));
+            basis.add_terms(&r.terms);
         }
         current = projected;
         let mean = current
@@ -195,7 +195,7 @@ pub fn discover<S: Similarity>(
         let (gone, keep): (Vec<usize>, Vec<usize>) = remaining
             .into_iter()
             .filter(|&i| i != c)
-            .partition(|&i| implied(&basis, &rows_of(candidates, i), d));
+            .partition(|&i| implied(&basis, &rows_of(candidates, i)));
         remaining = keep;
         out.implied.push(gone);
     }

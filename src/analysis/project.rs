@@ -13,6 +13,7 @@ use crate::analysis::linalg;
 use crate::ir::feature::world_intervals;
 use crate::ir::{Affine, Model, Primitive};
 use nalgebra::{DMatrix, DVector};
+use std::collections::HashMap;
 
 /// The faces of a model's axis-aligned parts, as affine forms, with what sizes them.
 #[derive(Debug, Clone)]
@@ -92,11 +93,18 @@ impl Faces {
     }
 }
 
-/// An orthonormal basis of the span of the chosen rows, with their right-hand sides.
+/// A basis of the span of the chosen rows, kept sparse in reduced row-echelon form: each
+/// stored row has a pivot slot where it is 1 and every other stored row is 0. Reducing a
+/// row is then one pass over its pivot entries, so the rank test costs the rows' fill, not
+/// the number of slots times the number of chosen rows.
 #[derive(Debug, Clone, Default)]
 pub struct RowBasis {
-    rows: Vec<DVector<f64>>,
+    rows: Vec<Vec<(u32, f64)>>,
+    pivot_of: HashMap<u32, usize>,
 }
+
+/// Entries below this (relative to the row's largest) are round-off.
+const RELATIVE_ZERO: f64 = 1e-9;
 
 impl RowBasis {
     pub fn len(&self) -> usize {
@@ -107,41 +115,88 @@ impl RowBasis {
         self.rows.is_empty()
     }
 
-    fn residual(&self, r: &DVector<f64>) -> DVector<f64> {
-        let mut v = r.clone();
-        for _ in 0..2 {
-            for b in &self.rows {
-                let k = b.dot(&v);
-                v.axpy(-k, b, 1.0);
+    /// `row` minus its components along the stored rows, and the row's largest entry.
+    fn reduce(&self, row: &[(u32, f64)]) -> (HashMap<u32, f64>, f64) {
+        let scale = row.iter().fold(0.0f64, |m, &(_, a)| m.max(a.abs()));
+        let mut v: HashMap<u32, f64> = row.iter().copied().filter(|&(_, a)| a != 0.0).collect();
+        for &(s, a) in row {
+            if let Some(&k) = self.pivot_of.get(&s) {
+                if a == 0.0 {
+                    continue;
+                }
+                for &(t, b) in &self.rows[k] {
+                    *v.entry(t).or_insert(0.0) -= a * b;
+                }
             }
         }
-        v
+        v.retain(|_, a| a.abs() > RELATIVE_ZERO * scale);
+        (v, scale)
+    }
+
+    /// Whether the sparse `row` lies in the span (relative tolerance).
+    pub fn contains_terms(&self, row: &[(u32, f64)]) -> bool {
+        self.reduce(row).0.is_empty()
+    }
+
+    /// Adds the sparse `row` if it is independent; returns whether it was.
+    pub fn add_terms(&mut self, row: &[(u32, f64)]) -> bool {
+        let (v, _) = self.reduce(row);
+        let Some((&pivot, &p)) = v
+            .iter()
+            .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()).then(b.0.cmp(a.0)))
+        else {
+            return false;
+        };
+        let mut new: Vec<(u32, f64)> = v.iter().map(|(&s, &a)| (s, a / p)).collect();
+        new.sort_by_key(|&(s, _)| s);
+        for stored in &mut self.rows {
+            let Some(at) = stored.iter().position(|&(s, _)| s == pivot) else {
+                continue;
+            };
+            let f = stored[at].1;
+            let scale = stored.iter().fold(0.0f64, |m, &(_, a)| m.max(a.abs()));
+            let mut m: HashMap<u32, f64> = stored.iter().copied().collect();
+            for &(s, a) in &new {
+                *m.entry(s).or_insert(0.0) -= f * a;
+            }
+            m.remove(&pivot);
+            m.retain(|_, a| a.abs() > RELATIVE_ZERO * scale * 1e-3);
+            let mut r: Vec<(u32, f64)> = m.into_iter().collect();
+            r.sort_by_key(|&(s, _)| s);
+            *stored = r;
+        }
+        self.pivot_of.insert(pivot, self.rows.len());
+        self.rows.push(new);
+        true
     }
 
     /// Whether `row` lies in the span (relative tolerance).
     pub fn contains(&self, row: &DVector<f64>) -> bool {
-        let n = row.norm();
-        n == 0.0 || self.residual(row).norm() <= 1e-9 * n
+        self.contains_terms(&sparse(row))
     }
 
     /// Adds `row` if it is independent; returns whether it was.
     pub fn add(&mut self, row: &DVector<f64>) -> bool {
-        if self.contains(row) {
-            return false;
-        }
-        let r = self.residual(row);
-        let n = r.norm();
-        self.rows.push(r / n);
-        true
+        self.add_terms(&sparse(row))
     }
 
     pub fn matrix(&self, d: usize) -> DMatrix<f64> {
         let mut m = DMatrix::zeros(self.rows.len(), d);
         for (i, r) in self.rows.iter().enumerate() {
-            m.set_row(i, &r.transpose());
+            for &(s, a) in r {
+                m[(i, s as usize)] = a;
+            }
         }
         m
     }
+}
+
+fn sparse(row: &DVector<f64>) -> Vec<(u32, f64)> {
+    row.iter()
+        .enumerate()
+        .filter(|(_, a)| **a != 0.0)
+        .map(|(i, &a)| (i as u32, a))
+        .collect()
 }
 
 /// The linear part of an affine row as a dense vector.
@@ -172,8 +227,15 @@ impl Projector {
         let b = basis.matrix(d);
         let hb = &hinv * b.transpose();
         let m = &b * &hb;
-        let k = &hinv - &hb * linalg::pinv(&m) * hb.transpose();
-        Projector { k }
+        // The basis has full row rank, so `m` is symmetric positive definite: a Cholesky
+        // solve is exact and far cheaper than a pseudo-inverse.
+        let correction = match m.clone().cholesky() {
+            Some(c) => &hb * c.solve(&hb.transpose()),
+            None => &hb * linalg::pinv(&m) * hb.transpose(),
+        };
+        Projector {
+            k: hinv - correction,
+        }
     }
 
     /// `x` moved (within the chosen constraints) so that the `rows` also hold. Rows are
@@ -210,4 +272,33 @@ pub fn project_onto(faces: &Faces, x: &[f64], rows: &[&Affine], skip: &[usize]) 
     // One refinement step absorbs round-off in the constraint residuals.
     v = p.project(&v, rows);
     v.as_slice().to_vec()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn row_basis_answers_span_questions_exactly() {
+        let mut b = RowBasis::default();
+        assert!(b.add_terms(&[(0, 1.0), (1, -1.0)]));
+        assert!(b.add_terms(&[(1, 1.0), (2, -1.0)]));
+        // x0 − x2 = (x0 − x1) + (x1 − x2): implied, so not added.
+        assert!(b.contains_terms(&[(0, 2.0), (2, -2.0)]));
+        assert!(!b.add_terms(&[(0, 0.5), (2, -0.5)]));
+        assert!(!b.contains_terms(&[(0, 1.0), (2, 1.0)]));
+        assert!(!b.contains_terms(&[(3, 1.0)]));
+        assert_eq!(b.len(), 2);
+        // A half-coefficient row (a centre) mixed with the others.
+        assert!(b.add_terms(&[(0, 1.0), (3, -0.5), (4, -0.5)]));
+        assert!(b.contains_terms(&[(2, 2.0), (3, -1.0), (4, -1.0)]));
+        // The dense matrix spans the same rows: every stored row is in the span of the input.
+        let m = b.matrix(5);
+        assert_eq!(m.nrows(), 3);
+        assert_eq!(linalg_rank(&m), 3);
+    }
+
+    fn linalg_rank(m: &DMatrix<f64>) -> usize {
+        m.clone().svd(false, false).rank(1e-9)
+    }
 }
