@@ -1,155 +1,15 @@
-//! Soft silhouettes on the CPU: the per-pixel kernel, compositing, and the gradient of an
-//! image loss with respect to every part parameter.
-//!
-//! For each view a [`ViewPrep`] holds the camera frame and each part's silhouette hull.
-//! [`render_view`] evaluates every pixel: each item's coverage (a sigmoid of the signed
-//! distance to its hull, or exactly 0/1 with `sigma = None`), its visible surface (exact ray
-//! intersection, booleans by segment classification), and front-to-back compositing into
-//! coverage `M` and premultiplied shade `S`. Pixels near a silhouette also record an
-//! [`Entry`]: how `M` and `S` change with that part's signed distance and how the distance
-//! changes with the two hull vertices of the deciding edge. [`theta_gradient`] turns
-//! per-pixel loss derivatives and those entries into `∂loss/∂θ` for every part.
+//! The per-pixel kernel: each item's coverage and visible surface at one pixel,
+//! front-to-back compositing into `M` and `S`, and (with soft edges) the gradient entries
+//! of that pixel. Per-thread scratch buffers are cleared at the start of every pixel.
 
-// Geometry here indexes several arrays by axis; index loops read best.
-#![allow(clippy::needless_range_loop)]
-
-use super::camera::{Camera, Frame, Vec3, dot, scale};
-use super::scene::{
-    CUTOFF, Coverage, Hull, NSHADE, NTHETA, PartGeom, Scene, SurfacePoint, eval_inside, eval_soft,
-    hull, logistic, sample_jacobian, shade_features, surface_jacobian,
+use super::gradient::{Entries, Entry, SurfaceEntry};
+use super::visible::{first_solid_from, visible_surface, visible_surface_at};
+use super::{HULL_MARGIN, ViewPrep};
+use crate::render::camera::{Frame, Vec3, dot, scale};
+use crate::render::scene::{
+    CUTOFF, Coverage, Hit, NSHADE, PartGeom, Scene, SurfacePoint, eval_inside, eval_soft, logistic,
+    shade_features,
 };
-use rayon::prelude::*;
-
-/// Pixels of hard-edge tolerance around a polygonal hull (the exact silhouette of a curved
-/// part lies within a small fraction of a pixel outside its polygon).
-const HULL_MARGIN: f64 = 1.5;
-
-/// A view ready to render: camera frame, hulls per part, pixel rectangles per item.
-#[derive(Debug, Clone)]
-pub struct ViewPrep {
-    pub frame: Frame,
-    pub hulls: Vec<Option<Hull>>,
-    /// Per item: the pixel rectangle `[x0, y0, x1, y1)` outside which it is absent.
-    pub rects: Vec<Option<[u32; 4]>>,
-}
-
-/// Prepares a view for soft edges of width `sigma` pixels (`None`: hard edges).
-pub fn prepare_view(scene: &Scene, camera: &Camera, sigma: Option<f64>) -> ViewPrep {
-    let frame = camera.frame();
-    let hulls: Vec<Option<Hull>> = scene.parts.iter().map(|p| hull(p, &frame)).collect();
-    let margin = HULL_MARGIN.max(sigma.map_or(0.0, |s| CUTOFF * s)) + 1.0;
-    let (w, h) = (frame.width as f64, frame.height as f64);
-    let rects = scene
-        .items
-        .iter()
-        .map(|it| {
-            let mut lo = [f64::INFINITY; 2];
-            let mut hi = [f64::NEG_INFINITY; 2];
-            let mut any = false;
-            for &p in &it.parts {
-                if !scene.parts[p].valid {
-                    continue;
-                }
-                any = true;
-                match &hulls[p] {
-                    Some(hl) => {
-                        for k in 0..2 {
-                            lo[k] = lo[k].min(hl.lo[k]);
-                            hi[k] = hi[k].max(hl.hi[k]);
-                        }
-                    }
-                    None => {
-                        lo = [0.0, 0.0];
-                        hi = [w, h];
-                    }
-                }
-            }
-            if !any {
-                return None;
-            }
-            let x0 = (lo[0] - margin).floor().clamp(0.0, w) as u32;
-            let y0 = (lo[1] - margin).floor().clamp(0.0, h) as u32;
-            let x1 = (hi[0] + margin).ceil().clamp(0.0, w) as u32;
-            let y1 = (hi[1] + margin).ceil().clamp(0.0, h) as u32;
-            (x0 < x1 && y0 < y1).then_some([x0, y0, x1, y1])
-        })
-        .collect();
-    ViewPrep {
-        frame,
-        hulls,
-        rects,
-    }
-}
-
-/// A pixel's sensitivity to one part's signed distance to its silhouette.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Entry {
-    pub pixel: u32,
-    pub part: u32,
-    /// The hull edge (its start vertex index) that decides the distance.
-    pub edge: u32,
-    /// `∂M/∂s` and `∂S/∂s`.
-    pub dm: f64,
-    pub ds: f64,
-    /// `∂s/∂(start vertex)` and `∂s/∂(end vertex)`.
-    pub ga: [f64; 2],
-    pub gb: [f64; 2],
-}
-
-/// A pixel's sensitivity to a subtracted part's surface where it cuts the visible surface
-/// (the rim of a hollow): `∂M/∂sd`, `∂S/∂sd` with `sd` the signed distance (world units) of
-/// the visible point to that part's nearest face, whose material point and normal are given.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SurfaceEntry {
-    pub pixel: u32,
-    pub part: u32,
-    pub dm: f64,
-    pub ds: f64,
-    pub n: [f64; 3],
-    pub q: [f64; 3],
-    pub ldq: [f64; 3],
-}
-
-/// A view's gradient entries.
-#[derive(Debug, Clone, Default, PartialEq)]
-pub struct Entries {
-    pub edges: Vec<Entry>,
-    pub surfaces: Vec<SurfaceEntry>,
-}
-
-impl Entries {
-    pub fn extend(&mut self, other: Entries) {
-        self.edges.extend(other.edges);
-        self.surfaces.extend(other.surfaces);
-    }
-}
-
-/// Soft channels of a view: coverage and premultiplied shade.
-#[derive(Debug, Clone, PartialEq)]
-pub struct SoftImage {
-    pub width: u32,
-    pub height: u32,
-    pub m: Vec<f32>,
-    pub s: Vec<f32>,
-}
-
-/// The exact (hard) visible surface per pixel.
-#[derive(Debug, Clone, PartialEq)]
-pub struct HardImage {
-    pub width: u32,
-    pub height: u32,
-    /// Item index of the visible surface, or −1.
-    pub item: Vec<i32>,
-    /// Eye-space unit normal of the visible surface (x right, y up, z to the viewer).
-    pub normal: Vec<[f32; 3]>,
-    pub depth: Vec<f32>,
-}
-
-impl HardImage {
-    pub fn mask(&self) -> impl Iterator<Item = bool> + '_ {
-        self.item.iter().map(|&i| i >= 0)
-    }
-}
 
 /// What one layer (an item at a pixel) contributes: coverage `α` and premultiplied shade
 /// `P` (`α·shade` for a plain surface).
@@ -194,7 +54,7 @@ struct Neg {
 
 /// Per-thread buffers reused from pixel to pixel.
 #[derive(Default)]
-struct Scratch {
+pub(super) struct Scratch {
     layers: Vec<Layer>,
     states: Vec<(u32, PartAt)>,
     negs: Vec<Neg>,
@@ -204,27 +64,27 @@ struct Scratch {
 
 /// Per-part state at a pixel.
 #[derive(Clone, Copy)]
-struct PartAt {
+pub(super) struct PartAt {
     alpha: f64,
     hull: bool,
     cov: Coverage,
-    hit: Option<super::scene::Hit>,
+    pub(super) hit: Option<Hit>,
 }
 
-struct PixelCtx<'a> {
-    scene: &'a Scene,
-    prep: &'a ViewPrep,
-    sigma: Option<f64>,
-    shade: [f64; NSHADE],
+pub(super) struct PixelCtx<'a> {
+    pub(super) scene: &'a Scene,
+    pub(super) prep: &'a ViewPrep,
+    pub(super) sigma: Option<f64>,
+    pub(super) shade: [f64; NSHADE],
 }
 
 /// Output of one pixel.
-struct PixelOut {
-    m: f64,
-    s: f64,
-    item: i32,
-    normal: Vec3,
-    depth: f64,
+pub(super) struct PixelOut {
+    pub(super) m: f64,
+    pub(super) s: f64,
+    pub(super) item: i32,
+    pub(super) normal: Vec3,
+    pub(super) depth: f64,
 }
 
 impl PixelCtx<'_> {
@@ -287,7 +147,7 @@ impl PixelCtx<'_> {
         (v, n)
     }
 
-    fn pixel(
+    pub(super) fn pixel(
         &self,
         px: u32,
         py: u32,
@@ -688,258 +548,4 @@ fn pixel_scale(frame: &Frame, d: Vec3, t: f64, na: Vec3, nb: Vec3) -> f64 {
         g2 += c * c;
     }
     g2.sqrt().max(1e-12)
-}
-
-/// The first point at or after `t_start` where the item's solid begins (the point just
-/// after `t_start` counts: it shows the surface being left there, turned inward).
-fn first_solid_from(
-    program: &[super::scene::Op],
-    st: &[(u32, PartAt)],
-    t_start: f64,
-) -> Option<(f64, Vec3)> {
-    let index_of = |p: usize| st.iter().position(|(q, _)| *q as usize == p);
-    let mut inside: Vec<bool> = st
-        .iter()
-        .map(|(_, s)| s.hit.is_some_and(|h| h.t0 <= t_start && t_start < h.t1))
-        .collect();
-    let member =
-        |inside: &[bool]| eval_inside(program, &|p| index_of(p).is_some_and(|k| inside[k]));
-    if member(&inside) {
-        // Solid right after leaving a part at t_start: that part's exit surface, inward.
-        let k = st
-            .iter()
-            .position(|(_, s)| s.hit.is_some_and(|h| h.t1 == t_start))?;
-        let h = st[k].1.hit?;
-        return Some((t_start, [-h.n1[0], -h.n1[1], -h.n1[2]]));
-    }
-    let mut events: Vec<(f64, usize, bool)> = Vec::new();
-    for (k, (_, s)) in st.iter().enumerate() {
-        if let Some(h) = s.hit {
-            if h.t0 > t_start {
-                events.push((h.t0, k, true));
-            }
-            if h.t1 > t_start {
-                events.push((h.t1, k, false));
-            }
-        }
-    }
-    events.sort_by(|a, b| a.0.total_cmp(&b.0));
-    for &(t, k, entry) in &events {
-        inside[k] = entry;
-        if member(&inside) {
-            let h = st[k].1.hit?;
-            let n = if entry {
-                h.n0
-            } else {
-                [-h.n1[0], -h.n1[1], -h.n1[2]]
-            };
-            return Some((t, n));
-        }
-    }
-    None
-}
-
-/// The first point along the ray where a boolean item's solid begins, with its outward
-/// normal (an exit from a subtracted part shows that part's surface turned inward).
-fn visible_surface(program: &[super::scene::Op], st: &[(u32, PartAt)]) -> Option<(f64, Vec3)> {
-    visible_surface_at(program, st).map(|(t, n, _)| (t, n))
-}
-
-/// [`visible_surface`] with the state index of the part whose surface it is.
-fn visible_surface_at(
-    program: &[super::scene::Op],
-    st: &[(u32, PartAt)],
-) -> Option<(f64, Vec3, usize)> {
-    let mut events: Vec<(f64, usize, bool)> = Vec::with_capacity(2 * st.len());
-    let mut inside: Vec<bool> = vec![false; st.len()];
-    for (k, (_, s)) in st.iter().enumerate() {
-        if let Some(h) = s.hit {
-            if h.t0 > 0.0 {
-                events.push((h.t0, k, true));
-            } else {
-                inside[k] = true;
-            }
-            events.push((h.t1, k, false));
-        }
-    }
-    if events.is_empty() {
-        return None;
-    }
-    events.sort_by(|a, b| a.0.total_cmp(&b.0));
-    let index_of = |p: usize| st.iter().position(|(q, _)| *q as usize == p);
-    let member =
-        |inside: &[bool]| eval_inside(program, &|p| index_of(p).is_some_and(|k| inside[k]));
-    let mut was = member(&inside);
-    for &(t, k, entry) in &events {
-        inside[k] = entry;
-        let now = member(&inside);
-        if now && !was && t > 0.0 {
-            let h = st[k].1.hit.expect("events come from hits");
-            let n = if entry {
-                h.n0
-            } else {
-                [-h.n1[0], -h.n1[1], -h.n1[2]]
-            };
-            return Some((t, n, k));
-        }
-        was = now;
-    }
-    None
-}
-
-/// One row of a view: coverage, shade, item, normal, depth, entries.
-type Row = (
-    Vec<f32>,
-    Vec<f32>,
-    Vec<i32>,
-    Vec<[f32; 3]>,
-    Vec<f32>,
-    Entries,
-);
-
-/// Renders one view: soft channels (hard edges when `sigma` is `None`), the hard surface,
-/// and (when asked) the gradient entries.
-pub fn render_view(
-    scene: &Scene,
-    prep: &ViewPrep,
-    sigma: Option<f64>,
-    shade: [f64; NSHADE],
-    want_entries: bool,
-) -> (SoftImage, HardImage, Entries) {
-    let (w, h) = (prep.frame.width, prep.frame.height);
-    let ctx = PixelCtx {
-        scene,
-        prep,
-        sigma,
-        shade,
-    };
-    // The span of each row that some item touches; the rest is background.
-    let mut span = vec![(w, 0u32); h as usize];
-    for r in prep.rects.iter().flatten() {
-        for y in r[1]..r[3] {
-            let sp = &mut span[y as usize];
-            sp.0 = sp.0.min(r[0]);
-            sp.1 = sp.1.max(r[2]);
-        }
-    }
-    let rows: Vec<Row> = (0..h)
-        .into_par_iter()
-        .map(|y| {
-            let n = w as usize;
-            let mut m = vec![0.0f32; n];
-            let mut s = vec![0.0f32; n];
-            let mut item = vec![-1i32; n];
-            let mut normal = vec![[0.0f32; 3]; n];
-            let mut depth = vec![f32::INFINITY; n];
-            let mut entries = Entries::default();
-            let mut scratch = Scratch::default();
-            let (x0, x1) = span[y as usize];
-            {
-                for x in x0..x1 {
-                    let out = ctx.pixel(x, y, &mut scratch, want_entries.then_some(&mut entries));
-                    let i = x as usize;
-                    m[i] = out.m as f32;
-                    s[i] = out.s as f32;
-                    item[i] = out.item;
-                    normal[i] = out.normal.map(|v| v as f32);
-                    depth[i] = out.depth as f32;
-                }
-            }
-            (m, s, item, normal, depth, entries)
-        })
-        .collect();
-    let npx = (w * h) as usize;
-    let mut soft = SoftImage {
-        width: w,
-        height: h,
-        m: Vec::with_capacity(npx),
-        s: Vec::with_capacity(npx),
-    };
-    let mut hard = HardImage {
-        width: w,
-        height: h,
-        item: Vec::with_capacity(npx),
-        normal: Vec::with_capacity(npx),
-        depth: Vec::with_capacity(npx),
-    };
-    let mut entries = Entries::default();
-    for (m, s, item, normal, depth, e) in rows {
-        soft.m.extend(m);
-        soft.s.extend(s);
-        hard.item.extend(item);
-        hard.normal.extend(normal);
-        hard.depth.extend(depth);
-        entries.extend(e);
-    }
-    (soft, hard, entries)
-}
-
-/// `∂loss/∂θ` per part from per-pixel derivatives `gm = ∂loss/∂M`, `gs = ∂loss/∂S`.
-pub fn theta_gradient(
-    scene: &Scene,
-    prep: &ViewPrep,
-    entries: &Entries,
-    gm: &[f32],
-    gs: &[f32],
-) -> Vec<[f64; NTHETA]> {
-    // ∂loss/∂(hull vertex) per part.
-    let mut dv: Vec<Vec<[f64; 2]>> = prep
-        .hulls
-        .iter()
-        .map(|h| {
-            h.as_ref()
-                .map_or(Vec::new(), |h| vec![[0.0; 2]; h.verts.len()])
-        })
-        .collect();
-    for e in &entries.edges {
-        let i = e.pixel as usize;
-        let c = gm[i] as f64 * e.dm + gs[i] as f64 * e.ds;
-        if c == 0.0 {
-            continue;
-        }
-        let v = &mut dv[e.part as usize];
-        let a = e.edge as usize;
-        let b = (a + 1) % v.len();
-        v[a][0] += c * e.ga[0];
-        v[a][1] += c * e.ga[1];
-        v[b][0] += c * e.gb[0];
-        v[b][1] += c * e.gb[1];
-    }
-    let mut out = accumulate_vertices(scene, prep, &dv);
-    for e in &entries.surfaces {
-        let i = e.pixel as usize;
-        let c = gm[i] as f64 * e.dm + gs[i] as f64 * e.ds;
-        if c == 0.0 {
-            continue;
-        }
-        let j = surface_jacobian(e.n, e.q, e.ldq);
-        for (acc, jq) in out[e.part as usize].iter_mut().zip(j) {
-            *acc += c * jq;
-        }
-    }
-    out
-}
-
-/// Chains `∂loss/∂(hull vertex)` to `∂loss/∂θ`.
-pub fn accumulate_vertices(
-    scene: &Scene,
-    prep: &ViewPrep,
-    dv: &[Vec<[f64; 2]>],
-) -> Vec<[f64; NTHETA]> {
-    let mut out = vec![[0.0; NTHETA]; scene.parts.len()];
-    for (p, h) in prep.hulls.iter().enumerate() {
-        let Some(h) = h else { continue };
-        for (k, g) in dv[p].iter().enumerate() {
-            if g[0] == 0.0 && g[1] == 0.0 {
-                continue;
-            }
-            let s = &h.samples[h.src[k] as usize];
-            if let Some(j) = sample_jacobian(&scene.parts[p], s, &prep.frame) {
-                for q in 0..NTHETA {
-                    out[p][q] += g[0] * j[0][q] + g[1] * j[1][q];
-                }
-            }
-        }
-    }
-    out
 }
