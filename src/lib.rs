@@ -5,6 +5,11 @@
 //! hold on it; `back` presents and writes the results. Every stage is usable as a library;
 //! `main.rs` is only the command line.
 
+/// Evaluation and analysis allocate many small vectors (affine forms, features); mimalloc
+/// handles them much faster than the system allocator.
+#[global_allocator]
+static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 pub mod analysis;
 pub mod back;
 pub mod compile;
