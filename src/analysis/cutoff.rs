@@ -5,6 +5,7 @@
 //! derivative; the published code puts a single mean-shift change point on the curve
 //! itself. Both are computed and reported; the paper's decides.
 
+use super::noise::median;
 use serde::Serialize;
 
 #[derive(Debug, Clone, Serialize)]
@@ -63,14 +64,7 @@ pub const STEP_FLOOR: f64 = 1e-3;
 
 /// Whether a step's increment stands out from the `earlier` ones (their median).
 fn is_outlier(increment: f64, earlier: &[f64]) -> bool {
-    let mut e = earlier.to_vec();
-    e.sort_by(f64::total_cmp);
-    let median = match e.len() {
-        0 => 0.0,
-        n if n % 2 == 1 => e[n / 2],
-        n => 0.5 * (e[n / 2 - 1] + e[n / 2]),
-    };
-    increment > STEP_FLOOR && increment > OUTLIER_FACTOR * median
+    increment > STEP_FLOOR && increment > OUTLIER_FACTOR * median(earlier)
 }
 
 /// Decides how many chosen constraints to keep from the distortion `curve`

@@ -111,7 +111,9 @@ pub fn discover<S: Similarity>(
         .iter()
         .flat_map(|s| s.values.iter())
         .fold(1.0f64, |m, v| m.max(v.abs()));
-    let mut cache: HashMap<usize, f64> = HashMap::new();
+    // Per candidate, each variation's similarity after projecting onto it (1 when the
+    // variation already satisfies it); the score is their product.
+    let mut cache: HashMap<usize, Vec<f64>> = HashMap::new();
     let mut dirty: HashSet<u32> = HashSet::new();
     while !remaining.is_empty() && !samples.is_empty() {
         let projectors: Vec<Projector> = current
@@ -129,20 +131,24 @@ pub fn discover<S: Similarity>(
         for &c in remaining.iter().filter(|&&c| tiers[c] == tier) {
             let rows = rows_of(candidates, c);
             let fresh = cache.contains_key(&c) && !touches(&rows, &dirty);
-            let score = if fresh {
-                cache[&c]
-            } else {
-                let mut score = 1.0;
-                for ((x, p), r) in current.iter().zip(&projectors).zip(&references) {
-                    let y = p.project(x, &rows);
-                    // A variation that already satisfies the candidate does not move.
-                    if moved(&y, x, scale) {
-                        score *= sim.similarity_to(y.as_slice(), r);
-                    }
-                }
-                cache.insert(c, score);
-                score
-            };
+            if !fresh {
+                let sims = current
+                    .iter()
+                    .zip(&projectors)
+                    .zip(&references)
+                    .map(|((x, p), r)| {
+                        let y = p.project(x, &rows);
+                        // A variation that already satisfies the candidate does not move.
+                        if moved(&y, x, scale) {
+                            sim.similarity_to(y.as_slice(), r)
+                        } else {
+                            1.0
+                        }
+                    })
+                    .collect();
+                cache.insert(c, sims);
+            }
+            let score: f64 = cache[&c].iter().product();
             if best.is_none_or(|(b, _)| score > b) {
                 best = Some((score, c));
             }
@@ -165,19 +171,8 @@ pub fn discover<S: Similarity>(
                 }
             }
         }
-        let worst = projected
-            .iter()
-            .zip(&current)
-            .zip(&references)
-            .map(|((y, x), r)| {
-                if moved(y, x, scale) {
-                    1.0 - sim.similarity_to(y.as_slice(), r)
-                } else {
-                    0.0
-                }
-            })
-            .fold(0.0, f64::max);
-        out.worst.push(worst);
+        out.worst
+            .push(cache[&c].iter().fold(0.0, |w, s| f64::max(w, 1.0 - s)));
         for r in rows {
             basis.add_terms(&r.terms);
         }

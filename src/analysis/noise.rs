@@ -52,7 +52,8 @@ fn largest_residual(candidates: &Candidates, i: usize, samples: &[Sample]) -> f6
         .fold(0.0, f64::max)
 }
 
-fn median(values: &[f64]) -> f64 {
+/// The median of `values` (0 for none).
+pub fn median(values: &[f64]) -> f64 {
     if values.is_empty() {
         return 0.0;
     }

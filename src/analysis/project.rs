@@ -115,8 +115,8 @@ impl RowBasis {
         self.rows.is_empty()
     }
 
-    /// `row` minus its components along the stored rows, and the row's largest entry.
-    fn reduce(&self, row: &[(u32, f64)]) -> (HashMap<u32, f64>, f64) {
+    /// `row` minus its components along the stored rows (round-off dropped).
+    fn reduce(&self, row: &[(u32, f64)]) -> HashMap<u32, f64> {
         let scale = row.iter().fold(0.0f64, |m, &(_, a)| m.max(a.abs()));
         let mut v: HashMap<u32, f64> = row.iter().copied().filter(|&(_, a)| a != 0.0).collect();
         for &(s, a) in row {
@@ -130,17 +130,17 @@ impl RowBasis {
             }
         }
         v.retain(|_, a| a.abs() > RELATIVE_ZERO * scale);
-        (v, scale)
+        v
     }
 
     /// Whether the sparse `row` lies in the span (relative tolerance).
     pub fn contains_terms(&self, row: &[(u32, f64)]) -> bool {
-        self.reduce(row).0.is_empty()
+        self.reduce(row).is_empty()
     }
 
     /// Adds the sparse `row` if it is independent; returns whether it was.
     pub fn add_terms(&mut self, row: &[(u32, f64)]) -> bool {
-        let (v, _) = self.reduce(row);
+        let v = self.reduce(row);
         let Some((&pivot, &p)) = v
             .iter()
             .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()).then(b.0.cmp(a.0)))
@@ -170,16 +170,6 @@ impl RowBasis {
         true
     }
 
-    /// Whether `row` lies in the span (relative tolerance).
-    pub fn contains(&self, row: &DVector<f64>) -> bool {
-        self.contains_terms(&sparse(row))
-    }
-
-    /// Adds `row` if it is independent; returns whether it was.
-    pub fn add(&mut self, row: &DVector<f64>) -> bool {
-        self.add_terms(&sparse(row))
-    }
-
     pub fn matrix(&self, d: usize) -> DMatrix<f64> {
         let mut m = DMatrix::zeros(self.rows.len(), d);
         for (i, r) in self.rows.iter().enumerate() {
@@ -189,23 +179,6 @@ impl RowBasis {
         }
         m
     }
-}
-
-fn sparse(row: &DVector<f64>) -> Vec<(u32, f64)> {
-    row.iter()
-        .enumerate()
-        .filter(|(_, a)| **a != 0.0)
-        .map(|(i, &a)| (i as u32, a))
-        .collect()
-}
-
-/// The linear part of an affine row as a dense vector.
-pub fn dense(row: &Affine, d: usize) -> DVector<f64> {
-    let mut v = DVector::zeros(d);
-    for &(s, a) in &row.terms {
-        v[s as usize] = a;
-    }
-    v
 }
 
 /// `K` for one point and one chosen basis (see the module docs).

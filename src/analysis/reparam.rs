@@ -7,7 +7,7 @@
 //! with partial pivoting and the results are read back as exact fractions (`Frac`).
 
 use super::linalg::rank;
-use super::project::{RowBasis, dense};
+use super::project::RowBasis;
 use crate::ir::feature::world_intervals;
 use crate::ir::{Affine, Model, SlotId};
 
@@ -169,13 +169,13 @@ pub fn solve(model: &Model, rows: &[Affine]) -> Solution {
     let mut basis = RowBasis::default();
     let mut system: Vec<Affine> = Vec::new();
     for r in rows {
-        if basis.add(&dense(r, d)) {
+        if basis.add_terms(&r.terms) {
             system.push(r.clone());
         }
     }
     let mut anchors = 0;
     for r in anchor_rows(model) {
-        if basis.add(&dense(&r, d)) {
+        if basis.add_terms(&r.terms) {
             system.push(r);
             anchors += 1;
         }
