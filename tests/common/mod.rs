@@ -16,12 +16,18 @@ pub fn repo() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
 }
 
-/// Every `.scad` file directly in `dir` (relative to the repository), sorted.
+/// Every `.scad` file directly in `dir` (relative to the repository), hidden ones aside, sorted.
 pub fn scad_files(dir: &str) -> Vec<PathBuf> {
     let mut v: Vec<PathBuf> = std::fs::read_dir(repo().join(dir))
         .unwrap_or_else(|e| panic!("cannot list {dir}: {e}"))
         .filter_map(|e| e.ok().map(|e| e.path()))
         .filter(|p| p.extension().is_some_and(|x| x == "scad"))
+        // Hidden files are other tests' scratch copies (a perturbed model written beside
+        // its includes), which come and go while this lists the folder.
+        .filter(|p| {
+            !p.file_name()
+                .is_some_and(|n| n.to_string_lossy().starts_with('.'))
+        })
         .collect();
     v.sort();
     v
