@@ -21,7 +21,7 @@ use crate::front::ast::{ExprKind, StmtKind};
 use crate::front::load::Loaded;
 use crate::front::source::{SourceMap, Span};
 use crate::front::walk::{Visitor, visit_stmts};
-use crate::ir::{Affine, CsgNode, Model, Part};
+use crate::ir::{Affine, CsgNode, Model};
 use crate::variation::Variation;
 use serde::Serialize;
 use std::collections::{BTreeSet, HashMap, HashSet};
@@ -40,7 +40,18 @@ pub struct Options {
 
 /// The model's IoU between two settings of its slots, by exact ray-interval volumes.
 pub struct VolumeSimilarity<'m> {
-    pub model: &'m Model,
+    model: &'m Model,
+    /// For each slot, the parts whose geometry depends on it.
+    slot_parts: Vec<Vec<usize>>,
+}
+
+impl<'m> VolumeSimilarity<'m> {
+    pub fn new(model: &'m Model) -> VolumeSimilarity<'m> {
+        VolumeSimilarity {
+            model,
+            slot_parts: slot_parts(model),
+        }
+    }
 }
 
 /// The CSG tree without the `skip` parts (`None` when nothing is left).
@@ -66,53 +77,58 @@ pub fn csg_without(node: &CsgNode, skip: &[usize]) -> Option<CsgNode> {
 
 /// A setting of the model made into geometry once, with its volume.
 pub struct VolumeReference {
-    parts: Vec<Part>,
-    csg: CsgNode,
-    volume: f64,
+    solid: crate::geom::Prepared,
     skip: Vec<usize>,
-}
-
-impl VolumeSimilarity<'_> {
-    fn solid(&self, x: &[f64], skip: &[usize]) -> (Vec<Part>, CsgNode) {
-        let parts = self.model.parts_at(x).unwrap_or_default();
-        let csg = csg_without(&self.model.csg, skip).unwrap_or(CsgNode::Union(Vec::new()));
-        (parts, csg)
-    }
 }
 
 impl Similarity for VolumeSimilarity<'_> {
     type Reference = VolumeReference;
 
     fn reference(&self, b: &[f64], skip: &[usize]) -> VolumeReference {
-        let (parts, csg) = self.solid(b, skip);
-        let volume = crate::geom::volume(&parts, &csg);
+        let parts = self.model.parts_at(b).unwrap_or_default();
+        let csg = csg_without(&self.model.csg, skip).unwrap_or(CsgNode::Union(Vec::new()));
         VolumeReference {
-            parts,
-            csg,
-            volume,
+            solid: crate::geom::Prepared::new(parts, csg),
             skip: skip.to_vec(),
         }
     }
 
     /// IoU, integrating only around the parts that differ from the reference.
     fn similarity_to(&self, a: &[f64], r: &VolumeReference) -> f64 {
-        let (parts, csg) = self.solid(a, &r.skip);
-        if parts.len() != r.parts.len() {
-            return 0.0;
-        }
-        match crate::geom::changed_region(&parts, &r.parts) {
-            Some(region) if region.is_empty() => 1.0,
-            Some(region) => {
-                crate::geom::iou_local((&r.parts, &r.csg), (&parts, &csg), &region, r.volume)
+        match self.model.parts_at(a) {
+            Some(parts) if parts.len() == r.solid.parts().len() => {
+                let edits: Vec<crate::geom::Edit> =
+                    parts.into_iter().map(Some).enumerate().collect();
+                r.solid.iou_edited(&edits)
             }
-            None => crate::geom::iou((&parts, &csg), (&r.parts, &r.csg)),
+            _ => 0.0,
         }
     }
 
-    fn removal(&self, x: &[f64], part: usize) -> f64 {
-        let (pa, ca) = self.solid(x, &[part]);
-        let (pb, cb) = self.solid(x, &[]);
-        crate::geom::iou((&pa, &ca), (&pb, &cb))
+    /// IoU, evaluating only the parts that depend on a changed slot.
+    fn similarity_changed(&self, a: &[f64], changed: &[u32], r: &VolumeReference) -> f64 {
+        if r.solid.parts().len() != self.model.parts.len() {
+            return 0.0;
+        }
+        let mut touched: Vec<usize> = changed
+            .iter()
+            .flat_map(|&s| self.slot_parts[s as usize].iter().copied())
+            .filter(|p| !r.skip.contains(p))
+            .collect();
+        touched.sort_unstable();
+        touched.dedup();
+        let mut edits: Vec<crate::geom::Edit> = Vec::with_capacity(touched.len());
+        for p in touched {
+            match self.model.parts[p].at(a) {
+                Some(part) => edits.push((p, Some(part))),
+                None => return 0.0,
+            }
+        }
+        r.solid.iou_edited(&edits)
+    }
+
+    fn removal(&self, r: &VolumeReference, part: usize) -> f64 {
+        r.solid.iou_edited(&[(part, None)])
     }
 }
 
@@ -267,9 +283,7 @@ fn moved_to_input_anchor(model: &Model, x: &[f64]) -> Vec<f64> {
     if shift.len() != 3 || shift.iter().all(|s| *s == 0.0) {
         return x.to_vec();
     }
-    let d = model.slots.len();
-    let mut rows: Vec<Vec<f64>> = Vec::new();
-    let mut rhs: Vec<f64> = Vec::new();
+    let mut rows: Vec<(Vec<(crate::ir::SlotId, f64)>, f64)> = Vec::new();
     for p in model.parts.iter().filter(|p| p.misaligned.is_none()) {
         let Some(iv) = crate::ir::feature::world_intervals(p) else {
             continue;
@@ -277,20 +291,12 @@ fn moved_to_input_anchor(model: &Model, x: &[f64]) -> Vec<f64> {
         for (a, (lo, hi)) in iv.iter().enumerate() {
             for n in [lo, hi] {
                 if let Some(f) = n.affine() {
-                    let mut r = vec![0.0; d];
-                    for &(s, c) in &f.terms {
-                        r[s as usize] = c;
-                    }
-                    rows.push(r);
-                    rhs.push(shift[a]);
+                    rows.push((f.terms.clone(), shift[a]));
                 }
             }
         }
     }
-    let q = nalgebra::DMatrix::from_fn(rows.len(), d, |i, j| rows[i][j]);
-    let b = nalgebra::DVector::from_vec(rhs);
-    let delta = crate::analysis::linalg::pinv(&q) * &b;
-    let residual = (&q * &delta - &b).amax();
+    let (delta, residual) = crate::analysis::linalg::least_norm_solve(&rows, model.slots.len());
     if residual > 1e-6 * model.size().max(1.0) {
         return x.to_vec();
     }
@@ -454,7 +460,7 @@ pub fn reparameterize(
     let d = model.slots.len();
     let candidates = find_candidates(model);
     let faces = Faces::of(model);
-    let sim = VolumeSimilarity { model };
+    let sim = VolumeSimilarity::new(model);
     let raw: Vec<Vec<f64>> = variations.iter().map(|v| v.values.clone()).collect();
     let optional = optional_parts(model.parts.len(), &raw, &sim);
     // A part a variation does without keeps the model's own shape there, so presets and

@@ -8,9 +8,9 @@
 //! afterwards (`cutoff`).
 
 use super::candidates::Candidates;
-use super::project::{Faces, Projector, RowBasis};
+use super::project::{Faces, Projector, SlotBlocks};
+use super::rowbasis::RowBasis;
 use crate::ir::Affine;
-use nalgebra::DVector;
 use std::collections::{HashMap, HashSet};
 
 /// How alike settings of the model are (1 = identical): IoU, or an image-based measure.
@@ -25,8 +25,14 @@ pub trait Similarity: Sync {
     fn similarity(&self, a: &[f64], b: &[f64], skip: &[usize]) -> f64 {
         self.similarity_to(a, &self.reference(b, skip))
     }
-    /// Between the model at `x` without `part` and the model at `x`.
-    fn removal(&self, x: &[f64], part: usize) -> f64;
+    /// [`Similarity::similarity_to`] when `a` differs from the reference's point only in the
+    /// `changed` slots (what an implementation may use to look at less of the model).
+    fn similarity_changed(&self, a: &[f64], changed: &[u32], reference: &Self::Reference) -> f64 {
+        let _ = changed;
+        self.similarity_to(a, reference)
+    }
+    /// Between the reference (prepared with no part skipped) and it without `part`.
+    fn removal(&self, reference: &Self::Reference, part: usize) -> f64;
 }
 
 /// One variation as discovery sees it: its slot values and the parts it does without.
@@ -60,11 +66,13 @@ fn rows_of(c: &Candidates, i: usize) -> Vec<&Affine> {
     c.list[i].rows.iter().collect()
 }
 
-/// Whether a projection moved a point by more than round-off.
-fn moved(y: &DVector<f64>, x: &DVector<f64>, scale: f64) -> bool {
-    y.iter()
-        .zip(x.iter())
-        .any(|(a, b)| (a - b).abs() > 1e-9 * scale)
+/// Whether a point already satisfies every row (to round-off of the model's numbers), so
+/// projecting onto them would not move it.
+fn satisfied(rows: &[&Affine], x: &[f64], scale: f64) -> bool {
+    rows.iter().all(|r| {
+        let size = r.terms.iter().fold(0.0f64, |m, &(_, a)| m.max(a.abs()));
+        r.eval(x).abs() <= 1e-9 * scale * size
+    })
 }
 
 /// Whether any row depends on a slot in `dirty`.
@@ -76,12 +84,65 @@ fn implied(basis: &RowBasis, rows: &[&Affine]) -> bool {
     rows.iter().all(|r| basis.contains_terms(&r.terms))
 }
 
+/// One variation during the greedy: where it is, and what projecting it needs.
+struct Variation<'a, R> {
+    sample: &'a Sample,
+    projector: Projector,
+    current: Vec<f64>,
+    /// The current point prepared as a reference (made when a projection first needs it).
+    reference: Option<R>,
+    /// Similarity of the current point to the original variation.
+    fidelity: f64,
+}
+
+/// The chosen rows and how they couple slots, shared by every variation.
+struct Chosen {
+    basis: RowBasis,
+    blocks: SlotBlocks,
+    members: HashMap<u32, Vec<u32>>,
+}
+
+impl Chosen {
+    /// Adds a candidate's rows; returns the slots whose blocks changed.
+    fn add(&mut self, rows: &[&Affine]) -> Vec<u32> {
+        let mut changed = Vec::new();
+        for r in rows {
+            if self.basis.add_terms(&r.terms) {
+                self.blocks.join(r.slots());
+                changed.extend(r.slots());
+            }
+        }
+        changed
+    }
+}
+
+/// How the variation's point moves when projected onto the chosen rows plus `rows`.
+fn shift_of<R>(
+    v: &mut Variation<'_, R>,
+    faces: &Faces,
+    chosen: &mut Chosen,
+    rows: &[&Affine],
+) -> Vec<(u32, f64)> {
+    v.projector.shift(
+        faces,
+        &chosen.basis,
+        &mut chosen.blocks,
+        &chosen.members,
+        &v.current,
+        rows,
+    )
+}
+
 /// Runs the greedy selection to the end (every candidate chosen or implied).
 ///
 /// `tiers[c]` ranks candidate `c` by prior plausibility (0 first): each step takes the best
 /// score among the remaining candidates of the lowest tier, so a relation the variations
 /// break beyond their noise (`noise`) waits until every plausible one is taken, whatever its
 /// IoU. With every tier equal this is the paper's greedy.
+///
+/// A candidate every variation already satisfies scores 1 (nothing moves), the best there
+/// is: such candidates are taken together, in list order, which is the order the greedy
+/// would take them one by one, without scoring the rest in between.
 pub fn discover<S: Similarity>(
     faces: &Faces,
     candidates: &Candidates,
@@ -90,14 +151,40 @@ pub fn discover<S: Similarity>(
     sim: &S,
     tiers: &[u8],
 ) -> Discovery {
-    let d = slots;
-    let mut basis = RowBasis::default();
+    debug_assert_eq!(faces.slots(), slots);
+    let mut chosen = Chosen {
+        basis: RowBasis::default(),
+        blocks: SlotBlocks::of(faces),
+        members: HashMap::new(),
+    };
+    chosen.members = chosen.blocks.members();
     let mut remaining: Vec<usize> = (0..candidates.list.len())
-        .filter(|&i| !implied(&basis, &rows_of(candidates, i)))
+        .filter(|&i| !implied(&chosen.basis, &rows_of(candidates, i)))
         .collect();
-    let mut current: Vec<DVector<f64>> = samples
+    // Which candidates hold each slot: what to look at again when slots move or the basis
+    // changes around them.
+    let mut by_slot: Vec<Vec<u32>> = vec![Vec::new(); slots];
+    for (i, c) in candidates.list.iter().enumerate() {
+        let mut mine: Vec<u32> = c.rows.iter().flat_map(|r| r.slots()).collect();
+        mine.sort_unstable();
+        mine.dedup();
+        for s in mine {
+            by_slot[s as usize].push(i as u32);
+        }
+    }
+    let mut alive = vec![false; candidates.list.len()];
+    for &c in &remaining {
+        alive[c] = true;
+    }
+    let mut vars: Vec<Variation<'_, S::Reference>> = samples
         .iter()
-        .map(|s| DVector::from_column_slice(&s.values))
+        .map(|s| Variation {
+            sample: s,
+            projector: Projector::new(faces.metric(&s.values, &s.optional)),
+            current: s.values.clone(),
+            reference: None,
+            fidelity: 1.0,
+        })
         .collect();
     let mut out = Discovery {
         order: Vec::new(),
@@ -115,84 +202,241 @@ pub fn discover<S: Similarity>(
     // variation already satisfies it); the score is their product.
     let mut cache: HashMap<usize, Vec<f64>> = HashMap::new();
     let mut dirty: HashSet<u32> = HashSet::new();
-    while !remaining.is_empty() && !samples.is_empty() {
-        let projectors: Vec<Projector> = current
-            .iter()
-            .zip(samples)
-            .map(|(x, s)| Projector::new(&faces.metric(x.as_slice(), &s.optional), &basis))
-            .collect();
-        let references: Vec<S::Reference> = current
-            .iter()
-            .zip(samples)
-            .map(|(x, s)| sim.reference(x.as_slice(), &s.optional))
-            .collect();
-        let tier = remaining.iter().map(|&c| tiers[c]).min().unwrap_or(0);
-        let mut best: Option<(f64, usize)> = None;
-        for &c in remaining.iter().filter(|&&c| tiers[c] == tier) {
-            let rows = rows_of(candidates, c);
-            let fresh = cache.contains_key(&c) && !touches(&rows, &dirty);
-            if !fresh {
-                let sims = current
-                    .iter()
-                    .zip(&projectors)
-                    .zip(&references)
-                    .map(|((x, p), r)| {
-                        let y = p.project(x, &rows);
-                        // A variation that already satisfies the candidate does not move.
-                        if moved(&y, x, scale) {
-                            sim.similarity_to(y.as_slice(), r)
-                        } else {
-                            1.0
-                        }
-                    })
-                    .collect();
-                cache.insert(c, sims);
-            }
-            let score: f64 = cache[&c].iter().product();
-            if best.is_none_or(|(b, _)| score > b) {
-                best = Some((score, c));
-            }
-        }
-        let Some((score, c)) = best else {
-            break;
-        };
+    // Whether every variation satisfies the candidate (then it scores 1 without a projection).
+    let exact_now = |c: usize, vars: &[Variation<'_, S::Reference>]| {
         let rows = rows_of(candidates, c);
-        let projected: Vec<DVector<f64>> = current
+        vars.iter().all(|v| satisfied(&rows, &v.current, scale))
+    };
+    let mut exact: Vec<bool> = (0..candidates.list.len())
+        .map(|c| alive[c] && exact_now(c, &vars))
+        .collect();
+    while !remaining.is_empty() && !samples.is_empty() {
+        let tier = remaining.iter().map(|&c| tiers[c]).min().unwrap_or(0);
+        let batch: Vec<usize> = remaining
             .iter()
-            .zip(&projectors)
-            .map(|(x, p)| p.project(x, &rows))
+            .copied()
+            .filter(|&c| tiers[c] == tier && exact[c])
             .collect();
-        // Scores of candidates away from what moved are kept (algorithms.md §3).
-        dirty = rows.iter().flat_map(|r| r.slots()).collect();
-        for (y, x) in projected.iter().zip(&current) {
-            for i in 0..d {
-                if (y[i] - x[i]).abs() > 1e-9 * scale {
-                    dirty.insert(i as u32);
+        let mut gone: Vec<usize> = Vec::new();
+        let mut changed: Vec<u32> = Vec::new();
+        if !batch.is_empty() {
+            for c in batch {
+                let rows = rows_of(candidates, c);
+                alive[c] = false;
+                if implied(&chosen.basis, &rows) {
+                    gone.push(c);
+                    continue;
+                }
+                changed.extend(chosen.add(&rows));
+                dirty.extend(rows.iter().flat_map(|r| r.slots()));
+                out.order.push(c);
+                out.scores.push(1.0);
+                out.tiers.push(tier);
+                out.worst.push(0.0);
+                out.curve.push(*out.curve.last().unwrap_or(&0.0));
+                out.implied.push(Vec::new());
+            }
+        } else {
+            let Some((score, c)) = best_candidate(
+                faces,
+                candidates,
+                tiers,
+                tier,
+                &remaining,
+                &mut vars,
+                &mut chosen,
+                sim,
+                scale,
+                &dirty,
+                &mut cache,
+            ) else {
+                break;
+            };
+            let rows = rows_of(candidates, c);
+            // Scores of candidates away from what moved are kept (algorithms.md §3).
+            dirty = rows.iter().flat_map(|r| r.slots()).collect();
+            let mut moved_any: HashSet<u32> = HashSet::new();
+            for v in vars.iter_mut() {
+                let shift = shift_of(v, faces, &mut chosen, &rows);
+                let mut moved = false;
+                for (s, delta) in shift {
+                    v.current[s as usize] += delta;
+                    moved_any.insert(s);
+                    if delta.abs() > 1e-9 * scale {
+                        dirty.insert(s);
+                        moved = true;
+                    }
+                }
+                if moved {
+                    v.reference = None;
+                    v.fidelity = sim.similarity(&v.current, &v.sample.values, &v.sample.optional);
                 }
             }
+            for &s in &moved_any {
+                for &k in &by_slot[s as usize] {
+                    let k = k as usize;
+                    exact[k] = alive[k] && exact_now(k, &vars);
+                }
+            }
+            out.worst
+                .push(cache[&c].iter().fold(0.0, |w, s| f64::max(w, 1.0 - s)));
+            changed.extend(chosen.add(&rows));
+            alive[c] = false;
+            let mean = vars.iter().map(|v| v.fidelity).sum::<f64>() / vars.len() as f64;
+            out.order.push(c);
+            out.scores.push(score);
+            out.tiers.push(tier);
+            out.curve.push(1.0 - mean);
+            out.implied.push(Vec::new());
         }
-        out.worst
-            .push(cache[&c].iter().fold(0.0, |w, s| f64::max(w, 1.0 - s)));
-        for r in rows {
-            basis.add_terms(&r.terms);
+        if !changed.is_empty() {
+            for v in vars.iter_mut() {
+                v.projector.invalidate(&mut chosen.blocks, &changed);
+            }
+            chosen.members = chosen.blocks.members();
         }
-        current = projected;
-        let mean = current
-            .iter()
-            .zip(samples)
-            .map(|(x, s)| sim.similarity(x.as_slice(), &s.values, &s.optional))
-            .sum::<f64>()
-            / samples.len() as f64;
-        out.order.push(c);
-        out.scores.push(score);
-        out.tiers.push(tier);
-        out.curve.push(1.0 - mean);
-        let (gone, keep): (Vec<usize>, Vec<usize>) = remaining
+        // Only candidates holding a pivot whose row changed can have become implied.
+        let mut check: Vec<u32> = chosen
+            .basis
+            .take_touched()
             .into_iter()
-            .filter(|&i| i != c)
-            .partition(|&i| implied(&basis, &rows_of(candidates, i)));
-        remaining = keep;
-        out.implied.push(gone);
+            .flat_map(|s| by_slot[s as usize].iter().copied())
+            .collect();
+        check.sort_unstable();
+        check.dedup();
+        for k in check {
+            let k = k as usize;
+            if alive[k] && implied(&chosen.basis, &rows_of(candidates, k)) {
+                alive[k] = false;
+                gone.push(k);
+            }
+        }
+        remaining.retain(|&c| alive[c]);
+        gone.sort_unstable();
+        if let Some(last) = out.implied.last_mut() {
+            *last = gone;
+        }
     }
     out
+}
+
+/// Scores every remaining candidate of `tier` (reusing cached scores away from `dirty`) and
+/// returns the best: (score, candidate).
+#[allow(clippy::too_many_arguments)]
+fn best_candidate<S: Similarity>(
+    faces: &Faces,
+    candidates: &Candidates,
+    tiers: &[u8],
+    tier: u8,
+    remaining: &[usize],
+    vars: &mut [Variation<'_, S::Reference>],
+    chosen: &mut Chosen,
+    sim: &S,
+    scale: f64,
+    dirty: &HashSet<u32>,
+    cache: &mut HashMap<usize, Vec<f64>>,
+) -> Option<(f64, usize)> {
+    let mut best: Option<(f64, usize)> = None;
+    // Candidates equal modulo the chosen rows, with equal residuals, project every variation
+    // to the same point: they are scored once.
+    let mut by_class: HashMap<Vec<i64>, Vec<f64>> = HashMap::new();
+    for &c in remaining.iter().filter(|&&c| tiers[c] == tier) {
+        let rows = rows_of(candidates, c);
+        let fresh = cache.contains_key(&c) && !touches(&rows, dirty);
+        if !fresh {
+            let class = projection_class(&chosen.basis, &rows, vars, scale);
+            let sims = match class.as_ref().and_then(|k| by_class.get(k)) {
+                Some(sims) => sims.clone(),
+                None => {
+                    let sims = similarities(faces, vars, chosen, sim, scale, &rows);
+                    if let Some(k) = class {
+                        by_class.insert(k, sims.clone());
+                    }
+                    sims
+                }
+            };
+            cache.insert(c, sims);
+        }
+        let score: f64 = cache[&c].iter().product();
+        if best.is_none_or(|(b, _)| score > b) {
+            best = Some((score, c));
+        }
+    }
+    best
+}
+
+/// Each variation's similarity after projecting it onto the chosen rows plus `rows`.
+fn similarities<S: Similarity>(
+    faces: &Faces,
+    vars: &mut [Variation<'_, S::Reference>],
+    chosen: &mut Chosen,
+    sim: &S,
+    scale: f64,
+    rows: &[&Affine],
+) -> Vec<f64> {
+    let mut sims = Vec::with_capacity(vars.len());
+    for v in vars.iter_mut() {
+        if satisfied(rows, &v.current, scale) {
+            sims.push(1.0);
+            continue;
+        }
+        let shift = shift_of(v, faces, chosen, rows);
+        // A variation that already satisfies the candidate does not move.
+        if shift.iter().all(|(_, d)| d.abs() <= 1e-9 * scale) {
+            sims.push(1.0);
+            continue;
+        }
+        let mut y = v.current.clone();
+        // Moves below round-off of the model's numbers change no volume worth integrating:
+        // only parts with a slot moved beyond it are measured again.
+        let changed: Vec<u32> = shift
+            .iter()
+            .filter(|(_, d)| d.abs() > 1e-9 * scale)
+            .map(|&(s, _)| s)
+            .collect();
+        for (s, d) in shift {
+            y[s as usize] += d;
+        }
+        let reference = v
+            .reference
+            .get_or_insert_with(|| sim.reference(&v.current, &v.sample.optional));
+        sims.push(sim.similarity_changed(&y, &changed, reference));
+    }
+    sims
+}
+
+/// A key shared by candidates whose projections coincide: each row reduced modulo the chosen
+/// rows and scaled to a largest coefficient of 1, with its residual at every variation's
+/// point, all quantised far below what changes a projection. `None` when a number does not
+/// fit a key (then the candidate is scored on its own).
+fn projection_class<R>(
+    basis: &RowBasis,
+    rows: &[&Affine],
+    vars: &[Variation<'_, R>],
+    scale: f64,
+) -> Option<Vec<i64>> {
+    let quantum = |v: f64, unit: f64| -> Option<i64> {
+        let q = (v / unit).round();
+        (q.is_finite() && q.abs() < 9e15).then_some(q as i64)
+    };
+    let mut key = Vec::new();
+    for r in rows {
+        let reduced = basis.reduced(&r.terms);
+        let Some(&(_, lead)) = reduced
+            .iter()
+            .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()).then(b.0.cmp(&a.0)))
+        else {
+            key.push(-1);
+            continue;
+        };
+        key.push(reduced.len() as i64);
+        for &(s, a) in &reduced {
+            key.push(i64::from(s));
+            key.push(quantum(a / lead, 1e-9)?);
+        }
+        for v in vars {
+            key.push(quantum(r.eval(&v.current) / lead, 1e-9 * scale)?);
+        }
+    }
+    Some(key)
 }

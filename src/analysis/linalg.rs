@@ -4,7 +4,8 @@
 //! model's slots; the constrained space is its null space. This module turns rows into
 //! matrices and answers rank questions with a tolerance scaled to the rows' magnitude.
 
-use crate::ir::Affine;
+use super::project::SlotBlocks;
+use crate::ir::{Affine, SlotId};
 use nalgebra::DMatrix;
 
 /// The rows' linear parts as a dense `rows × slots` matrix.
@@ -43,4 +44,48 @@ pub fn pinv(m: &DMatrix<f64>) -> DMatrix<f64> {
     let eps = 1e-10 * smax.max(f64::MIN_POSITIVE) * (m.nrows().max(m.ncols()) as f64);
     svd.pseudo_inverse(eps)
         .unwrap_or_else(|_| DMatrix::zeros(m.ncols(), m.nrows()))
+}
+
+/// The least-norm least-squares solution of sparse equations `row · δ = rhs` over `slots`
+/// unknowns, solved block by block (unknowns joined by a shared equation form one block, and
+/// blocks do not interact), with the largest residual left.
+pub fn least_norm_solve(rows: &[(Vec<(SlotId, f64)>, f64)], slots: usize) -> (Vec<f64>, f64) {
+    let mut blocks = SlotBlocks::new(slots);
+    for (terms, _) in rows {
+        blocks.join(terms.iter().map(|&(s, _)| s));
+    }
+    let mut by_block: std::collections::HashMap<SlotId, Vec<usize>> = Default::default();
+    for (i, (terms, _)) in rows.iter().enumerate() {
+        if let Some(&(s, _)) = terms.first() {
+            by_block.entry(blocks.find(s)).or_default().push(i);
+        }
+    }
+    let mut delta = vec![0.0; slots];
+    let mut residual = rows
+        .iter()
+        .filter(|(t, _)| t.is_empty())
+        .fold(0.0f64, |m, (_, b)| m.max(b.abs()));
+    for members in by_block.values() {
+        let mut unknowns: Vec<SlotId> = members
+            .iter()
+            .flat_map(|&i| rows[i].0.iter().map(|&(s, _)| s))
+            .collect();
+        unknowns.sort_unstable();
+        unknowns.dedup();
+        let q = DMatrix::from_fn(members.len(), unknowns.len(), |i, j| {
+            rows[members[i]]
+                .0
+                .iter()
+                .filter(|&&(s, _)| s == unknowns[j])
+                .map(|&(_, a)| a)
+                .sum()
+        });
+        let b = nalgebra::DVector::from_fn(members.len(), |i, _| rows[members[i]].1);
+        let x = pinv(&q) * &b;
+        residual = residual.max((&q * &x - &b).amax());
+        for (j, &s) in unknowns.iter().enumerate() {
+            delta[s as usize] = x[j];
+        }
+    }
+    (delta, residual)
 }

@@ -15,6 +15,7 @@ pub mod prior;
 pub mod project;
 pub mod ranges;
 pub mod reparam;
+pub mod rowbasis;
 pub mod tolerance;
 
 pub use candidates::{Candidate, Candidates, RelationKind, find_candidates};

@@ -25,8 +25,9 @@ pub fn optional_parts<S: Similarity>(
     variations
         .iter()
         .map(|v| {
+            let whole = sim.reference(v, &[]);
             (0..parts)
-                .filter(|&p| 1.0 - sim.removal(v, p) < OPTIONAL_THRESHOLD)
+                .filter(|&p| 1.0 - sim.removal(&whole, p) < OPTIONAL_THRESHOLD)
                 .collect()
         })
         .collect()

@@ -2,16 +2,22 @@
 //!
 //! The cost of a projection is the squared volume its face shifts sweep: every axis-aligned
 //! face (a box's six, a frustum's two ends and four side extremes) is an affine form `q·x`,
-//! weighted by its area at the point being projected (×π/4 for frustums). With
-//! `H = Σ area² q qᵀ + μI`, projecting `x` onto `{x : B x = b}` is the `H`-metric projection.
-//! A [`Projector`] holds `K = H⁻¹ − H⁻¹Bᵀ(BH⁻¹Bᵀ)⁻¹BH⁻¹` for the already-chosen rows `B`,
-//! so adding one candidate's rows costs one small solve: `Δ = −K nᵀ (n K nᵀ)⁺ (n x + c)`.
-//! Projecting a point that satisfies `B` in two steps equals projecting it at once (the
-//! projections are nested in the same metric), which is what makes greedy scoring cheap.
+//! weighted by its area (×π/4 for frustums). With `H = Σ area² q qᵀ + ridge`, projecting `x`
+//! onto `{x : B x = b}` is the `H`-metric projection. The areas are read once per variation
+//! ([`Metric`]), so projections onto growing constraint sets nest exactly: projecting a point
+//! that satisfies `B` onto `B` plus a row equals projecting the variation onto both at once.
+//!
+//! Slots fall into blocks: two slots share a block when one face form or one chosen row holds
+//! both ([`SlotBlocks`]). `H` and the rows are block-diagonal, so a projection solves only in
+//! the blocks a candidate's rows touch, in null-space form: with `N` a basis of the chosen
+//! rows' null space inside the block, `K = N (NᵀHN)⁻¹ Nᵀ`, and adding a candidate's rows `n`
+//! moves `x` by `−K nᵀ (n K nᵀ)⁺ (n x + c)`. A block is factored once per basis change and
+//! only when a projection needs it, so exactly satisfied candidates cost nothing.
 
+use super::rowbasis::RowBasis;
 use crate::analysis::linalg;
 use crate::ir::feature::world_intervals;
-use crate::ir::{Affine, Model, Primitive};
+use crate::ir::{Affine, Model, Primitive, SlotId};
 use nalgebra::{DMatrix, DVector};
 use std::collections::HashMap;
 
@@ -20,6 +26,8 @@ use std::collections::HashMap;
 pub struct Faces {
     parts: Vec<PartFaces>,
     slots: usize,
+    /// For each slot, the entries of `parts` with a face depending on it.
+    parts_of_slot: Vec<Vec<u32>>,
 }
 
 #[derive(Debug, Clone)]
@@ -30,9 +38,19 @@ struct PartFaces {
     round: bool,
 }
 
+/// Squared face areas of every part at one point: the weights of the projection metric.
+#[derive(Debug, Clone)]
+pub struct Metric {
+    /// Per entry of `Faces::parts`, the squared area of its faces normal to each axis
+    /// (0 for parts the variation does without).
+    weights: Vec<[f64; 3]>,
+    /// The ridge added to every slot: keeps slots no face depends on where they are.
+    ridge: f64,
+}
+
 impl Faces {
     pub fn of(model: &Model) -> Faces {
-        let parts = model
+        let parts: Vec<PartFaces> = model
             .parts
             .iter()
             .enumerate()
@@ -52,199 +70,394 @@ impl Faces {
                 })
             })
             .collect();
-        Faces {
-            parts,
-            slots: model.slots.len(),
-        }
-    }
-
-    /// The projection metric `H` at the point `x`, ignoring parts in `skip`.
-    pub fn metric(&self, x: &[f64], skip: &[usize]) -> DMatrix<f64> {
-        let d = self.slots;
-        let mut h = DMatrix::<f64>::zeros(d, d);
-        for pf in self.parts.iter().filter(|pf| !skip.contains(&pf.part)) {
-            let ext: [f64; 3] = std::array::from_fn(|a| {
-                (pf.intervals[a].1.eval(x) - pf.intervals[a].0.eval(x)).abs()
-            });
-            for a in 0..3 {
-                let mut area = ext[(a + 1) % 3] * ext[(a + 2) % 3];
-                if pf.round {
-                    area *= std::f64::consts::FRAC_PI_4;
-                }
-                let w2 = area * area;
-                if w2 == 0.0 {
-                    continue;
-                }
-                for f in [&pf.intervals[a].0, &pf.intervals[a].1] {
-                    for &(i, ci) in &f.terms {
-                        for &(j, cj) in &f.terms {
-                            h[(i as usize, j as usize)] += w2 * ci * cj;
-                        }
+        let slots = model.slots.len();
+        let mut parts_of_slot = vec![Vec::new(); slots];
+        for (k, pf) in parts.iter().enumerate() {
+            for (lo, hi) in &pf.intervals {
+                for s in lo.slots().chain(hi.slots()) {
+                    let list: &mut Vec<u32> = &mut parts_of_slot[s as usize];
+                    if list.last() != Some(&(k as u32)) {
+                        list.push(k as u32);
                     }
                 }
             }
         }
-        // A tiny ridge keeps slots no face depends on where they are.
-        let scale = (0..d).map(|i| h[(i, i)]).fold(0.0, f64::max).max(1.0);
-        for i in 0..d {
-            h[(i, i)] += 1e-9 * scale;
+        Faces {
+            parts,
+            slots,
+            parts_of_slot,
         }
-        h
-    }
-}
-
-/// A basis of the span of the chosen rows, kept sparse in reduced row-echelon form: each
-/// stored row has a pivot slot where it is 1 and every other stored row is 0. Reducing a
-/// row is then one pass over its pivot entries, so the rank test costs the rows' fill, not
-/// the number of slots times the number of chosen rows.
-#[derive(Debug, Clone, Default)]
-pub struct RowBasis {
-    rows: Vec<Vec<(u32, f64)>>,
-    pivot_of: HashMap<u32, usize>,
-}
-
-/// Entries below this (relative to the row's largest) are round-off.
-const RELATIVE_ZERO: f64 = 1e-9;
-
-impl RowBasis {
-    pub fn len(&self) -> usize {
-        self.rows.len()
     }
 
-    pub fn is_empty(&self) -> bool {
-        self.rows.is_empty()
+    pub fn slots(&self) -> usize {
+        self.slots
     }
 
-    /// `row` minus its components along the stored rows (round-off dropped).
-    fn reduce(&self, row: &[(u32, f64)]) -> HashMap<u32, f64> {
-        let scale = row.iter().fold(0.0f64, |m, &(_, a)| m.max(a.abs()));
-        let mut v: HashMap<u32, f64> = row.iter().copied().filter(|&(_, a)| a != 0.0).collect();
-        for &(s, a) in row {
-            if let Some(&k) = self.pivot_of.get(&s) {
-                if a == 0.0 {
-                    continue;
-                }
-                for &(t, b) in &self.rows[k] {
-                    *v.entry(t).or_insert(0.0) -= a * b;
-                }
-            }
-        }
-        v.retain(|_, a| a.abs() > RELATIVE_ZERO * scale);
-        v
-    }
-
-    /// Whether the sparse `row` lies in the span (relative tolerance).
-    pub fn contains_terms(&self, row: &[(u32, f64)]) -> bool {
-        self.reduce(row).is_empty()
-    }
-
-    /// Adds the sparse `row` if it is independent; returns whether it was.
-    pub fn add_terms(&mut self, row: &[(u32, f64)]) -> bool {
-        let v = self.reduce(row);
-        let Some((&pivot, &p)) = v
+    /// The metric's weights at the point `x`, ignoring parts in `skip`.
+    pub fn metric(&self, x: &[f64], skip: &[usize]) -> Metric {
+        let mut diagonal = vec![0.0f64; self.slots];
+        let weights: Vec<[f64; 3]> = self
+            .parts
             .iter()
-            .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()).then(b.0.cmp(a.0)))
-        else {
-            return false;
-        };
-        let mut new: Vec<(u32, f64)> = v.iter().map(|(&s, &a)| (s, a / p)).collect();
-        new.sort_by_key(|&(s, _)| s);
-        for stored in &mut self.rows {
-            let Some(at) = stored.iter().position(|&(s, _)| s == pivot) else {
-                continue;
-            };
-            let f = stored[at].1;
-            let scale = stored.iter().fold(0.0f64, |m, &(_, a)| m.max(a.abs()));
-            let mut m: HashMap<u32, f64> = stored.iter().copied().collect();
-            for &(s, a) in &new {
-                *m.entry(s).or_insert(0.0) -= f * a;
-            }
-            m.remove(&pivot);
-            m.retain(|_, a| a.abs() > RELATIVE_ZERO * scale * 1e-3);
-            let mut r: Vec<(u32, f64)> = m.into_iter().collect();
-            r.sort_by_key(|&(s, _)| s);
-            *stored = r;
+            .map(|pf| {
+                if skip.contains(&pf.part) {
+                    return [0.0; 3];
+                }
+                let ext: [f64; 3] = std::array::from_fn(|a| {
+                    (pf.intervals[a].1.eval(x) - pf.intervals[a].0.eval(x)).abs()
+                });
+                std::array::from_fn(|a| {
+                    let mut area = ext[(a + 1) % 3] * ext[(a + 2) % 3];
+                    if pf.round {
+                        area *= std::f64::consts::FRAC_PI_4;
+                    }
+                    let w2 = area * area;
+                    for f in [&pf.intervals[a].0, &pf.intervals[a].1] {
+                        for &(s, c) in &f.terms {
+                            diagonal[s as usize] += w2 * c * c;
+                        }
+                    }
+                    w2
+                })
+            })
+            .collect();
+        let scale = diagonal.iter().fold(0.0f64, |m, &v| m.max(v)).max(1.0);
+        Metric {
+            weights,
+            ridge: 1e-9 * scale,
         }
-        self.pivot_of.insert(pivot, self.rows.len());
-        self.rows.push(new);
-        true
     }
 
-    pub fn matrix(&self, d: usize) -> DMatrix<f64> {
-        let mut m = DMatrix::zeros(self.rows.len(), d);
-        for (i, r) in self.rows.iter().enumerate() {
-            for &(s, a) in r {
-                m[(i, s as usize)] = a;
+    /// Every weighted face form of the parts in `entries`: (squared area, form).
+    fn weighted_faces<'a>(
+        &'a self,
+        metric: &'a Metric,
+        entries: &'a [u32],
+    ) -> impl Iterator<Item = (f64, &'a Affine)> + 'a {
+        entries.iter().flat_map(move |&k| {
+            let pf = &self.parts[k as usize];
+            let w = metric.weights[k as usize];
+            (0..3).flat_map(move |a| {
+                [(w[a], &pf.intervals[a].0), (w[a], &pf.intervals[a].1)]
+                    .into_iter()
+                    .filter(|(w2, _)| *w2 != 0.0)
+            })
+        })
+    }
+}
+
+/// Slots grouped by what couples them in a projection (a union-find over slots): a face form
+/// joins its slots, and so does every chosen row.
+#[derive(Debug, Clone)]
+pub struct SlotBlocks {
+    parent: Vec<u32>,
+}
+
+impl SlotBlocks {
+    /// Every slot in a block of its own.
+    pub fn new(slots: usize) -> SlotBlocks {
+        SlotBlocks {
+            parent: (0..slots as u32).collect(),
+        }
+    }
+
+    /// Blocks joined by the faces alone (no rows chosen yet).
+    pub fn of(faces: &Faces) -> SlotBlocks {
+        let mut b = SlotBlocks::new(faces.slots);
+        for pf in &faces.parts {
+            for (lo, hi) in &pf.intervals {
+                b.join(lo.slots().chain(hi.slots()));
             }
+        }
+        b
+    }
+
+    /// The block of `slot` (its representative slot).
+    pub fn find(&mut self, slot: SlotId) -> SlotId {
+        let mut r = slot;
+        while self.parent[r as usize] != r {
+            r = self.parent[r as usize];
+        }
+        let mut s = slot;
+        while self.parent[s as usize] != r {
+            let next = self.parent[s as usize];
+            self.parent[s as usize] = r;
+            s = next;
+        }
+        r
+    }
+
+    /// Puts all `slots` in one block.
+    pub fn join(&mut self, slots: impl IntoIterator<Item = SlotId>) {
+        let mut first: Option<SlotId> = None;
+        for s in slots {
+            let r = self.find(s);
+            match first {
+                None => first = Some(r),
+                Some(f) if f != r => {
+                    // Smaller id as representative keeps the result independent of order.
+                    let (keep, gone) = if f < r { (f, r) } else { (r, f) };
+                    self.parent[gone as usize] = keep;
+                    first = Some(keep);
+                }
+                Some(_) => {}
+            }
+        }
+    }
+
+    /// The slots of every block, by representative.
+    pub fn members(&mut self) -> HashMap<SlotId, Vec<SlotId>> {
+        let mut m: HashMap<SlotId, Vec<SlotId>> = HashMap::new();
+        for s in 0..self.parent.len() as SlotId {
+            let r = self.find(s);
+            m.entry(r).or_default().push(s);
         }
         m
     }
 }
 
-/// `K` for one point and one chosen basis (see the module docs).
+/// One block factored for projections: its null-space basis and `NᵀHN`.
+struct Block {
+    /// Row of `null` for each slot of the block.
+    index: HashMap<SlotId, usize>,
+    slots: Vec<SlotId>,
+    /// `|slots| × r`: a basis of the chosen rows' null space inside the block.
+    null: DMatrix<f64>,
+    /// Cholesky factor of `NᵀHN` (`None` when the rows fix the block: `r = 0`).
+    gram: Option<nalgebra::Cholesky<f64, nalgebra::Dyn>>,
+}
+
+impl Block {
+    fn build(faces: &Faces, metric: &Metric, basis: &RowBasis, slots: Vec<SlotId>) -> Block {
+        let index: HashMap<SlotId, usize> =
+            slots.iter().enumerate().map(|(i, &s)| (s, i)).collect();
+        let free: Vec<SlotId> = slots
+            .iter()
+            .copied()
+            .filter(|&s| basis.row_with_pivot(s).is_none())
+            .collect();
+        let column: HashMap<SlotId, usize> =
+            free.iter().enumerate().map(|(j, &s)| (s, j)).collect();
+        let mut null = DMatrix::<f64>::zeros(slots.len(), free.len());
+        for (i, &s) in slots.iter().enumerate() {
+            match basis.row_with_pivot(s) {
+                None => null[(i, column[&s])] = 1.0,
+                Some(row) => {
+                    for &(t, a) in row.terms.iter().filter(|&&(t, _)| t != s) {
+                        if let Some(&j) = column.get(&t) {
+                            null[(i, j)] = -a;
+                        }
+                    }
+                }
+            }
+        }
+        let r = free.len();
+        let gram = (r > 0).then(|| {
+            let mut entries: Vec<u32> = slots
+                .iter()
+                .flat_map(|&s| faces.parts_of_slot[s as usize].iter().copied())
+                .collect();
+            entries.sort_unstable();
+            entries.dedup();
+            let faces_here: Vec<(f64, &Affine)> = faces.weighted_faces(metric, &entries).collect();
+            // G's rows are area·Nᵀq, so NᵀHN = GᵀG + ridge·NᵀN.
+            let mut g = DMatrix::<f64>::zeros(faces_here.len(), r);
+            for (row, (w2, q)) in faces_here.iter().enumerate() {
+                let w = w2.sqrt();
+                for &(s, a) in &q.terms {
+                    if let Some(&i) = index.get(&s) {
+                        for j in 0..r {
+                            g[(row, j)] += w * a * null[(i, j)];
+                        }
+                    }
+                }
+            }
+            let m = g.transpose() * &g + null.transpose() * &null * metric.ridge;
+            positive_definite_factor(m)
+        });
+        Block {
+            index,
+            slots,
+            null,
+            gram,
+        }
+    }
+
+    /// `Nᵀ nᵀ` for the part of `row` inside this block.
+    fn reduced(&self, row: &Affine) -> DVector<f64> {
+        let mut w = DVector::zeros(self.null.ncols());
+        for &(s, a) in &row.terms {
+            if let Some(&i) = self.index.get(&s) {
+                w.axpy(a, &self.null.row(i).transpose(), 1.0);
+            }
+        }
+        w
+    }
+}
+
+/// The Cholesky factor of the symmetric `m`. `NᵀHN` is positive definite (N has full column
+/// rank and the ridge is positive); should round-off say otherwise, a larger ridge is added.
+fn positive_definite_factor(m: DMatrix<f64>) -> nalgebra::Cholesky<f64, nalgebra::Dyn> {
+    let r = m.nrows();
+    let scale = (0..r)
+        .map(|i| m[(i, i)].abs())
+        .fold(0.0f64, f64::max)
+        .max(1e-300);
+    let mut ridge = 0.0;
+    loop {
+        if ridge > 1e6 * scale || m.iter().any(|v| !v.is_finite()) {
+            // Nothing sensible to factor: an identity metric on the null space.
+            return DMatrix::identity(r, r)
+                .cholesky()
+                .expect("the identity is positive definite");
+        }
+        let shifted = &m + DMatrix::identity(r, r) * ridge;
+        if let Some(c) = shifted.cholesky() {
+            return c;
+        }
+        ridge = if ridge == 0.0 {
+            1e-12 * scale
+        } else {
+            ridge * 100.0
+        };
+    }
+}
+
+/// Projections of one variation: its fixed metric and the blocks factored so far.
 pub struct Projector {
-    k: DMatrix<f64>,
+    metric: Metric,
+    blocks: HashMap<SlotId, Block>,
 }
 
 impl Projector {
-    pub fn new(h: &DMatrix<f64>, basis: &RowBasis) -> Projector {
-        let d = h.nrows();
-        let hinv = h
-            .clone()
-            .cholesky()
-            .map(|c| c.inverse())
-            .unwrap_or_else(|| linalg::pinv(h));
-        if basis.is_empty() {
-            return Projector { k: hinv };
-        }
-        let b = basis.matrix(d);
-        let hb = &hinv * b.transpose();
-        let m = &b * &hb;
-        // The basis has full row rank, so `m` is symmetric positive definite: a Cholesky
-        // solve is exact and far cheaper than a pseudo-inverse.
-        let correction = match m.clone().cholesky() {
-            Some(c) => &hb * c.solve(&hb.transpose()),
-            None => &hb * linalg::pinv(&m) * hb.transpose(),
-        };
+    pub fn new(metric: Metric) -> Projector {
         Projector {
-            k: hinv - correction,
+            metric,
+            blocks: HashMap::new(),
         }
     }
 
-    /// `x` moved (within the chosen constraints) so that the `rows` also hold. Rows are
-    /// sparse (a few slots each), so `K nᵀ` is a combination of a few columns of `K`.
-    pub fn project(&self, x: &DVector<f64>, rows: &[&Affine]) -> DVector<f64> {
-        if rows.is_empty() {
-            return x.clone();
+    /// Forgets the factored blocks that are no longer current: every block holding a slot
+    /// of `changed` (after joining), and every block that was merged into another.
+    pub fn invalidate(&mut self, blocks: &mut SlotBlocks, changed: &[SlotId]) {
+        for &s in changed {
+            let r = blocks.find(s);
+            self.blocks.remove(&r);
         }
-        let d = x.len();
-        let mut kn = DMatrix::zeros(d, rows.len());
-        for (i, r) in rows.iter().enumerate() {
-            let mut col = kn.column_mut(i);
-            for &(s, a) in &r.terms {
-                col.axpy(a, &self.k.column(s as usize), 1.0);
+        self.blocks.retain(|&r, _| blocks.find(r) == r);
+    }
+
+    /// How `x` (which satisfies `basis`) moves so that `rows` also hold, as sparse
+    /// (slot, change) pairs; empty when nothing moves.
+    pub fn shift(
+        &mut self,
+        faces: &Faces,
+        basis: &RowBasis,
+        blocks: &mut SlotBlocks,
+        members: &HashMap<SlotId, Vec<SlotId>>,
+        x: &[f64],
+        rows: &[&Affine],
+    ) -> Vec<(SlotId, f64)> {
+        if rows.is_empty() {
+            return Vec::new();
+        }
+        let mut touched: Vec<SlotId> = rows
+            .iter()
+            .flat_map(|r| r.slots())
+            .map(|s| blocks.find(s))
+            .collect();
+        touched.sort_unstable();
+        touched.dedup();
+        let k = rows.len();
+        let mut m = DMatrix::<f64>::zeros(k, k);
+        // Per touched block: the columns K nᵢᵀ in reduced form, u = (NᵀHN)⁻¹ Nᵀ nᵀ.
+        let mut parts: Vec<(SlotId, DMatrix<f64>)> = Vec::new();
+        for &root in &touched {
+            let block = self.blocks.entry(root).or_insert_with(|| {
+                Block::build(faces, &self.metric, basis, members[&root].clone())
+            });
+            let Some(gram) = &block.gram else {
+                continue;
+            };
+            let w =
+                DMatrix::from_columns(&rows.iter().map(|r| block.reduced(r)).collect::<Vec<_>>());
+            let u = gram.solve(&w);
+            m += w.transpose() * &u;
+            parts.push((root, u));
+        }
+        let e = DVector::from_fn(k, |i, _| rows[i].eval(x));
+        let lambda = linalg::pinv(&m) * e;
+        let mut out = Vec::new();
+        for (root, u) in parts {
+            let block = &self.blocks[&root];
+            let delta = &block.null * (u * &lambda);
+            for (i, &s) in block.slots.iter().enumerate() {
+                if delta[i] != 0.0 {
+                    out.push((s, -delta[i]));
+                }
             }
         }
-        let m = DMatrix::from_fn(rows.len(), rows.len(), |i, j| {
-            rows[i]
-                .terms
-                .iter()
-                .map(|&(s, a)| a * kn[(s as usize, j)])
-                .sum::<f64>()
-        });
-        let e = DVector::from_fn(rows.len(), |i, _| rows[i].eval(x.as_slice()));
-        x - kn * (linalg::pinv(&m) * e)
+        out
     }
 }
 
-/// Projects `x` onto all of `rows` at once (the basis is empty), weighting faces at `x`.
+/// Projects `x` onto all of `rows` at once, weighting faces at `x`.
 pub fn project_onto(faces: &Faces, x: &[f64], rows: &[&Affine], skip: &[usize]) -> Vec<f64> {
-    let h = faces.metric(x, skip);
-    let p = Projector::new(&h, &RowBasis::default());
-    let mut v = p.project(&DVector::from_column_slice(x), rows);
-    // One refinement step absorbs round-off in the constraint residuals.
-    v = p.project(&v, rows);
-    v.as_slice().to_vec()
+    let mut basis = RowBasis::default();
+    let mut blocks = SlotBlocks::of(faces);
+    for r in rows {
+        if basis.add(r) {
+            blocks.join(r.slots());
+        }
+    }
+    // A point satisfying every row, equal to `x` on the free slots.
+    let mut p = x.to_vec();
+    for row in basis.rows() {
+        p[row.pivot as usize] = basis.pivot_value(row, x);
+    }
+    // Then the metric-nearest point to `x` in the null space around it: z = −M⁻¹ Nᵀ H (p − x).
+    let metric = faces.metric(x, skip);
+    let offset: Vec<f64> = p.iter().zip(x).map(|(a, b)| a - b).collect();
+    let members = blocks.members();
+    for slots in members.into_values() {
+        if slots.iter().all(|&s| offset[s as usize] == 0.0) {
+            continue;
+        }
+        let block = Block::build(faces, &metric, &basis, slots);
+        let Some(gram) = &block.gram else {
+            continue;
+        };
+        // H (p − x) restricted to the block, then Nᵀ of it.
+        let mut hv: HashMap<SlotId, f64> = HashMap::new();
+        let mut entries: Vec<u32> = block
+            .slots
+            .iter()
+            .flat_map(|&s| faces.parts_of_slot[s as usize].iter().copied())
+            .collect();
+        entries.sort_unstable();
+        entries.dedup();
+        for (w2, q) in faces.weighted_faces(&metric, &entries) {
+            let qv: f64 = q.terms.iter().map(|&(s, a)| a * offset[s as usize]).sum();
+            if qv != 0.0 {
+                for &(s, a) in &q.terms {
+                    *hv.entry(s).or_insert(0.0) += w2 * a * qv;
+                }
+            }
+        }
+        for &s in &block.slots {
+            *hv.entry(s).or_insert(0.0) += metric.ridge * offset[s as usize];
+        }
+        let as_row = Affine {
+            constant: 0.0,
+            terms: hv.into_iter().collect(),
+        };
+        let z = gram.solve(&block.reduced(&as_row));
+        let step = &block.null * z;
+        for (i, &s) in block.slots.iter().enumerate() {
+            p[s as usize] -= step[i];
+        }
+    }
+    p
 }
 
 #[cfg(test)]
@@ -252,26 +465,17 @@ mod tests {
     use super::*;
 
     #[test]
-    fn row_basis_answers_span_questions_exactly() {
-        let mut b = RowBasis::default();
-        assert!(b.add_terms(&[(0, 1.0), (1, -1.0)]));
-        assert!(b.add_terms(&[(1, 1.0), (2, -1.0)]));
-        // x0 − x2 = (x0 − x1) + (x1 − x2): implied, so not added.
-        assert!(b.contains_terms(&[(0, 2.0), (2, -2.0)]));
-        assert!(!b.add_terms(&[(0, 0.5), (2, -0.5)]));
-        assert!(!b.contains_terms(&[(0, 1.0), (2, 1.0)]));
-        assert!(!b.contains_terms(&[(3, 1.0)]));
-        assert_eq!(b.len(), 2);
-        // A half-coefficient row (a centre) mixed with the others.
-        assert!(b.add_terms(&[(0, 1.0), (3, -0.5), (4, -0.5)]));
-        assert!(b.contains_terms(&[(2, 2.0), (3, -1.0), (4, -1.0)]));
-        // The dense matrix spans the same rows: every stored row is in the span of the input.
-        let m = b.matrix(5);
-        assert_eq!(m.nrows(), 3);
-        assert_eq!(linalg_rank(&m), 3);
-    }
-
-    fn linalg_rank(m: &DMatrix<f64>) -> usize {
-        m.clone().svd(false, false).rank(1e-9)
+    fn blocks_join_transitively_with_the_smallest_representative() {
+        let mut b = SlotBlocks {
+            parent: (0..6).collect(),
+        };
+        b.join([4, 2]);
+        b.join([5, 4]);
+        b.join([1, 0]);
+        assert_eq!(b.find(5), 2);
+        assert_eq!(b.find(2), 2);
+        assert_eq!(b.find(1), 0);
+        assert_eq!(b.find(3), 3);
+        assert_eq!(b.members().len(), 3);
     }
 }

@@ -7,7 +7,7 @@
 //! with partial pivoting and the results are read back as exact fractions (`Frac`).
 
 use super::linalg::rank;
-use super::project::RowBasis;
+use super::rowbasis::RowBasis;
 use crate::ir::feature::world_intervals;
 use crate::ir::{Affine, Model, SlotId};
 

@@ -12,6 +12,7 @@
 //! - [`overlap`], [`iou`]: volumes of `A`, `B`, `A ∩ B`, `A ∪ B` (inside a region).
 //! - [`iou_local`], [`changed_region`]: incremental IoU when only some parts differ.
 //! - [`Solid`]: a prepared solid, for many queries on one model.
+//! - [`Prepared`]: a solid kept part by part, for IoU against edits of a few parts.
 //!
 //! Accuracy: solids of axis-aligned boxes (unions, differences, intersections) are exact up
 //! to rounding: the integrand is constant on the cells cut by the boxes' bounds, and one ray
@@ -236,6 +237,109 @@ fn integrate_pair(a: &Solid, b: &Solid, region: Option<Aabb>) -> Overlap {
     }
 }
 
+/// One part of a solid replaced (`Some`) or removed (`None`): (part index, new part).
+pub type Edit = (usize, Option<Part>);
+
+/// A solid kept part by part (shapes and bounds prepared once, with its volume), so the IoU
+/// against the same solid with a few parts edited costs an integral over the edited region
+/// and the parts that meet it, not over the whole model.
+#[derive(Debug, Clone)]
+pub struct Prepared {
+    parts: Vec<Part>,
+    shapes: Vec<Option<Shape>>,
+    boxes: Vec<Aabb>,
+    csg: CsgNode,
+    volume: f64,
+}
+
+impl Prepared {
+    pub fn new(parts: Vec<Part>, csg: CsgNode) -> Prepared {
+        let shapes: Vec<Option<Shape>> = parts.iter().map(Shape::new).collect();
+        let boxes = shapes
+            .iter()
+            .map(|s| s.as_ref().map_or(Aabb::empty(), |s| Aabb::new(s.lo, s.hi)))
+            .collect();
+        let volume = volume(&parts, &csg);
+        Prepared {
+            parts,
+            shapes,
+            boxes,
+            csg,
+            volume,
+        }
+    }
+
+    pub fn parts(&self) -> &[Part] {
+        &self.parts
+    }
+
+    pub fn volume(&self) -> f64 {
+        self.volume
+    }
+
+    /// IoU between this solid and the same solid with `edits` applied (the incremental IoU
+    /// of the module docs, with the region where edited parts were or are).
+    pub fn iou_edited(&self, edits: &[Edit]) -> f64 {
+        let mut region = Aabb::empty();
+        let mut replaced: Vec<(usize, Option<Shape>)> = Vec::new();
+        for (i, new) in edits {
+            let Some(old) = self.parts.get(*i) else {
+                continue;
+            };
+            if new.as_ref().is_some_and(|n| same_part(old, n)) {
+                continue;
+            }
+            let shape = new.as_ref().and_then(Shape::new);
+            region = region.union(&self.boxes[*i]);
+            if let Some(s) = &shape {
+                region = region.union(&Aabb::new(s.lo, s.hi));
+            }
+            replaced.push((*i, shape));
+        }
+        if region.is_empty() {
+            return 1.0;
+        }
+        let near = |i: usize| self.boxes[i].intersects(&region);
+        let before = self.local_solid(&|i| near(i).then(|| self.shapes[i].clone()).flatten());
+        let after = self.local_solid(&|i| match replaced.iter().find(|(j, _)| *j == i) {
+            Some((_, s)) => s.clone(),
+            None => near(i).then(|| self.shapes[i].clone()).flatten(),
+        });
+        let local = integrate_pair(&before, &after, Some(region));
+        let outside = (self.volume - local.a).max(0.0);
+        let union = outside + local.union;
+        if union > 0.0 {
+            ((outside + local.inter) / union).clamp(0.0, 1.0)
+        } else {
+            1.0
+        }
+    }
+
+    /// The solid of the tree over the shapes `shape_of` gives (absent ones are empty).
+    fn local_solid(&self, shape_of: &dyn Fn(usize) -> Option<Shape>) -> Solid {
+        let mut shapes = Vec::new();
+        let mut index = vec![None; self.parts.len()];
+        for (i, slot) in index.iter_mut().enumerate() {
+            if let Some(s) = shape_of(i) {
+                *slot = Some(shapes.len() as u32);
+                shapes.push(s);
+            }
+        }
+        let program = Program::from_csg(&self.csg, &|i| index.get(i).copied().flatten());
+        let mut solid = Solid {
+            shapes,
+            program,
+            size: 0.0,
+        };
+        solid.size = solid.bounds().size();
+        solid
+    }
+}
+
+fn same_part(p: &Part, q: &Part) -> bool {
+    p.world.values() == q.world.values() && same_primitive(&p.primitive, &q.primitive)
+}
+
 /// Where a ray is inside one part, exactly, with outward normals; `None` when it misses
 /// (or the part is degenerate). The interval may have negative `t`.
 pub fn ray_part(part: &Part, ray: &Ray) -> Option<Interval> {
@@ -300,13 +404,10 @@ pub fn changed_region(a: &[Part], b: &[Part]) -> Option<Aabb> {
     if a.len() != b.len() {
         return None;
     }
-    let same = |p: &Part, q: &Part| {
-        p.world.values() == q.world.values() && same_primitive(&p.primitive, &q.primitive)
-    };
     Some(
         a.iter()
             .zip(b)
-            .filter(|(p, q)| !same(p, q))
+            .filter(|(p, q)| !same_part(p, q))
             .fold(Aabb::empty(), |acc, (p, q)| {
                 acc.union(&Aabb::of_part(p)).union(&Aabb::of_part(q))
             }),

@@ -123,7 +123,7 @@ pub fn evaluate(name: &str, seed: u64) -> Row {
         .collect();
     let compiled = reparameterize(&sources, &loaded, &model, &noisy, &Options::default());
     let candidates = find_candidates(&model);
-    let sim = VolumeSimilarity { model: &model };
+    let sim = VolumeSimilarity::new(&model);
     let clean_values: Vec<Vec<f64>> = clean.iter().map(|v| v.values.clone()).collect();
     let optional = optional_parts(model.parts.len(), &clean_values, &sim);
     let tol = 1e-6 * size;
