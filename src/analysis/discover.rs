@@ -6,6 +6,15 @@
 //! the best (product over variations), drop candidates the chosen rows now imply (rank test),
 //! and record the distortion curve against the original variations. The cutoff is decided
 //! afterwards (`cutoff`).
+//!
+//! What keeps it fast on large models without changing its answer: a candidate every
+//! variation already satisfies (within the tolerance that decides whether relations hold)
+//! scores 1 without a projection, and such candidates are taken together in list order;
+//! scoring stops at the first candidate scoring 1 (nothing beats it); candidates equal
+//! modulo the chosen rows with equal residuals share one score; cached scores are forgotten
+//! only for candidates holding a slot that moved or whose chosen rows changed; implied
+//! candidates are looked for only around changed pivots; projections factor only the slot
+//! blocks they touch (`project`), and IoU integrates only around the parts that moved.
 
 use super::candidates::Candidates;
 use super::project::{Faces, Projector, SlotBlocks};
@@ -66,18 +75,23 @@ fn rows_of(c: &Candidates, i: usize) -> Vec<&Affine> {
     c.list[i].rows.iter().collect()
 }
 
-/// Whether a point already satisfies every row (to round-off of the model's numbers), so
-/// projecting onto them would not move it.
-fn satisfied(rows: &[&Affine], x: &[f64], scale: f64) -> bool {
-    rows.iter().all(|r| {
-        let size = r.terms.iter().fold(0.0f64, |m, &(_, a)| m.max(a.abs()));
-        r.eval(x).abs() <= 1e-9 * scale * size
-    })
+/// Whether a point already satisfies every row within `tolerance`, the one that decides
+/// whether a relation holds at all: projecting onto them would move it by no more.
+fn satisfied(rows: &[&Affine], x: &[f64], tolerance: f64) -> bool {
+    rows.iter().all(|r| r.eval(x).abs() <= tolerance)
 }
 
-/// Whether any row depends on a slot in `dirty`.
-fn touches(rows: &[&Affine], dirty: &HashSet<u32>) -> bool {
-    rows.iter().any(|r| r.slots().any(|s| dirty.contains(&s)))
+/// Forgets the cached scores of every candidate holding one of `slots`.
+fn forget(
+    cache: &mut [Option<Vec<f64>>],
+    by_slot: &[Vec<u32>],
+    slots: impl IntoIterator<Item = u32>,
+) {
+    for s in slots {
+        for &k in &by_slot[s as usize] {
+            cache[k as usize] = None;
+        }
+    }
 }
 
 fn implied(basis: &RowBasis, rows: &[&Affine]) -> bool {
@@ -91,6 +105,8 @@ struct Variation<'a, R> {
     current: Vec<f64>,
     /// The current point prepared as a reference (made when a projection first needs it).
     reference: Option<R>,
+    /// The original variation prepared as a reference (made when it first moves).
+    original: Option<R>,
     /// Similarity of the current point to the original variation.
     fidelity: f64,
 }
@@ -183,6 +199,7 @@ pub fn discover<S: Similarity>(
             projector: Projector::new(faces.metric(&s.values, &s.optional)),
             current: s.values.clone(),
             reference: None,
+            original: None,
             fidelity: 1.0,
         })
         .collect();
@@ -198,14 +215,16 @@ pub fn discover<S: Similarity>(
         .iter()
         .flat_map(|s| s.values.iter())
         .fold(1.0f64, |m, v| m.max(v.abs()));
+    let holds = candidates.tolerance.epsilon.max(1e-9 * scale);
     // Per candidate, each variation's similarity after projecting onto it (1 when the
     // variation already satisfies it); the score is their product.
-    let mut cache: HashMap<usize, Vec<f64>> = HashMap::new();
-    let mut dirty: HashSet<u32> = HashSet::new();
+    // Scores of candidates away from what moved are kept (algorithms.md §3): an entry is
+    // forgotten when a slot of the candidate moves or the chosen rows change around it.
+    let mut cache: Vec<Option<Vec<f64>>> = vec![None; candidates.list.len()];
     // Whether every variation satisfies the candidate (then it scores 1 without a projection).
     let exact_now = |c: usize, vars: &[Variation<'_, S::Reference>]| {
         let rows = rows_of(candidates, c);
-        vars.iter().all(|v| satisfied(&rows, &v.current, scale))
+        vars.iter().all(|v| satisfied(&rows, &v.current, holds))
     };
     let mut exact: Vec<bool> = (0..candidates.list.len())
         .map(|c| alive[c] && exact_now(c, &vars))
@@ -228,7 +247,7 @@ pub fn discover<S: Similarity>(
                     continue;
                 }
                 changed.extend(chosen.add(&rows));
-                dirty.extend(rows.iter().flat_map(|r| r.slots()));
+                forget(&mut cache, &by_slot, rows.iter().flat_map(|r| r.slots()));
                 out.order.push(c);
                 out.scores.push(1.0);
                 out.tiers.push(tier);
@@ -246,15 +265,14 @@ pub fn discover<S: Similarity>(
                 &mut vars,
                 &mut chosen,
                 sim,
-                scale,
-                &dirty,
+                (scale, holds),
                 &mut cache,
             ) else {
                 break;
             };
             let rows = rows_of(candidates, c);
-            // Scores of candidates away from what moved are kept (algorithms.md §3).
-            dirty = rows.iter().flat_map(|r| r.slots()).collect();
+            let sims = cache[c].take().unwrap_or_default();
+            let mut dirty: HashSet<u32> = rows.iter().flat_map(|r| r.slots()).collect();
             let mut moved_any: HashSet<u32> = HashSet::new();
             for v in vars.iter_mut() {
                 let shift = shift_of(v, faces, &mut chosen, &rows);
@@ -269,7 +287,13 @@ pub fn discover<S: Similarity>(
                 }
                 if moved {
                     v.reference = None;
-                    v.fidelity = sim.similarity(&v.current, &v.sample.values, &v.sample.optional);
+                    let away: Vec<u32> = (0..v.current.len() as u32)
+                        .filter(|&s| v.current[s as usize] != v.sample.values[s as usize])
+                        .collect();
+                    let original = v
+                        .original
+                        .get_or_insert_with(|| sim.reference(&v.sample.values, &v.sample.optional));
+                    v.fidelity = sim.similarity_changed(&v.current, &away, original);
                 }
             }
             for &s in &moved_any {
@@ -278,8 +302,9 @@ pub fn discover<S: Similarity>(
                     exact[k] = alive[k] && exact_now(k, &vars);
                 }
             }
+            forget(&mut cache, &by_slot, dirty);
             out.worst
-                .push(cache[&c].iter().fold(0.0, |w, s| f64::max(w, 1.0 - s)));
+                .push(sims.iter().fold(0.0, |w, s| f64::max(w, 1.0 - s)));
             changed.extend(chosen.add(&rows));
             alive[c] = false;
             let mean = vars.iter().map(|v| v.fidelity).sum::<f64>() / vars.len() as f64;
@@ -296,19 +321,16 @@ pub fn discover<S: Similarity>(
             chosen.members = chosen.blocks.members();
         }
         // Only candidates holding a pivot whose row changed can have become implied.
-        let mut check: Vec<u32> = chosen
-            .basis
-            .take_touched()
-            .into_iter()
-            .flat_map(|s| by_slot[s as usize].iter().copied())
-            .collect();
-        check.sort_unstable();
-        check.dedup();
-        for k in check {
-            let k = k as usize;
-            if alive[k] && implied(&chosen.basis, &rows_of(candidates, k)) {
-                alive[k] = false;
-                gone.push(k);
+        let mut pivots = chosen.basis.take_touched();
+        pivots.sort_unstable();
+        pivots.dedup();
+        for s in pivots {
+            for &k in &by_slot[s as usize] {
+                let k = k as usize;
+                if alive[k] && implied(&chosen.basis, &rows_of(candidates, k)) {
+                    alive[k] = false;
+                    gone.push(k);
+                }
             }
         }
         remaining.retain(|&c| alive[c]);
@@ -320,8 +342,9 @@ pub fn discover<S: Similarity>(
     out
 }
 
-/// Scores every remaining candidate of `tier` (reusing cached scores away from `dirty`) and
-/// returns the best: (score, candidate).
+/// Scores the remaining candidates of `tier` (reusing cached scores) and returns the best:
+/// (score, candidate), the first in list order among equals. Similarities are at most 1, so
+/// the first candidate scoring 1 is the answer and the rest need no scoring.
 #[allow(clippy::too_many_arguments)]
 fn best_candidate<S: Similarity>(
     faces: &Faces,
@@ -332,34 +355,35 @@ fn best_candidate<S: Similarity>(
     vars: &mut [Variation<'_, S::Reference>],
     chosen: &mut Chosen,
     sim: &S,
-    scale: f64,
-    dirty: &HashSet<u32>,
-    cache: &mut HashMap<usize, Vec<f64>>,
+    (scale, holds): (f64, f64),
+    cache: &mut [Option<Vec<f64>>],
 ) -> Option<(f64, usize)> {
     let mut best: Option<(f64, usize)> = None;
     // Candidates equal modulo the chosen rows, with equal residuals, project every variation
     // to the same point: they are scored once.
     let mut by_class: HashMap<Vec<i64>, Vec<f64>> = HashMap::new();
     for &c in remaining.iter().filter(|&&c| tiers[c] == tier) {
-        let rows = rows_of(candidates, c);
-        let fresh = cache.contains_key(&c) && !touches(&rows, dirty);
-        if !fresh {
+        if cache[c].is_none() {
+            let rows = rows_of(candidates, c);
             let class = projection_class(&chosen.basis, &rows, vars, scale);
             let sims = match class.as_ref().and_then(|k| by_class.get(k)) {
                 Some(sims) => sims.clone(),
                 None => {
-                    let sims = similarities(faces, vars, chosen, sim, scale, &rows);
+                    let sims = similarities(faces, vars, chosen, sim, (scale, holds), &rows);
                     if let Some(k) = class {
                         by_class.insert(k, sims.clone());
                     }
                     sims
                 }
             };
-            cache.insert(c, sims);
+            cache[c] = Some(sims);
         }
-        let score: f64 = cache[&c].iter().product();
+        let score: f64 = cache[c].iter().flatten().product();
         if best.is_none_or(|(b, _)| score > b) {
             best = Some((score, c));
+        }
+        if score >= 1.0 {
+            break;
         }
     }
     best
@@ -371,12 +395,12 @@ fn similarities<S: Similarity>(
     vars: &mut [Variation<'_, S::Reference>],
     chosen: &mut Chosen,
     sim: &S,
-    scale: f64,
+    (scale, holds): (f64, f64),
     rows: &[&Affine],
 ) -> Vec<f64> {
     let mut sims = Vec::with_capacity(vars.len());
     for v in vars.iter_mut() {
-        if satisfied(rows, &v.current, scale) {
+        if satisfied(rows, &v.current, holds) {
             sims.push(1.0);
             continue;
         }

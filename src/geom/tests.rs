@@ -371,3 +371,53 @@ fn overlap_and_iou_of_shifted_boxes() {
     let o = overlap((&a, &u), (&b, &u), Some(r));
     assert_eq!((o.a, o.b, o.inter), (3.0, 1.0, 1.0));
 }
+
+#[test]
+fn edited_iou_equals_the_whole_models_iou() {
+    // A plate with a hole, a post through the hole's rim, and a far-away box: edits of one
+    // part (moved, resized, removed) measured locally agree with the whole integral.
+    let parts = vec![
+        cube([10.0, 10.0, 2.0], false, ID),
+        cube([2.0, 2.0, 6.0], false, translate([4.0, 4.0, -2.0])),
+        cyl(5.0, 1.0, 1.0, false, translate([3.0, 3.0, 0.0])),
+        cube([3.0, 3.0, 3.0], false, translate([40.0, 0.0, 0.0])),
+    ];
+    let tree = CsgNode::Union(vec![
+        CsgNode::Difference(vec![CsgNode::Part(0), CsgNode::Part(1)]),
+        CsgNode::Part(2),
+        CsgNode::Part(3),
+    ]);
+    let prepared = super::Prepared::new(parts.clone(), tree.clone());
+    let edits: Vec<Vec<super::Edit>> = vec![
+        vec![(
+            1,
+            Some(cube([3.0, 2.0, 6.0], false, translate([4.0, 4.0, -2.0]))),
+        )],
+        vec![(
+            2,
+            Some(cyl(5.0, 1.5, 1.0, false, translate([3.5, 3.0, 0.0]))),
+        )],
+        vec![(3, None)],
+        vec![
+            (2, None),
+            (
+                3,
+                Some(cube([3.0, 4.0, 3.0], false, translate([40.0, 0.0, 0.0]))),
+            ),
+        ],
+        vec![(0, Some(parts[0].clone()))],
+    ];
+    for edit in edits {
+        let mut after = parts.clone();
+        let mut removed = Vec::new();
+        for (i, p) in &edit {
+            match p {
+                Some(p) => after[*i] = p.clone(),
+                None => removed.push(*i),
+            }
+        }
+        let pruned = crate::compile::csg_without(&tree, &removed).unwrap();
+        let whole = iou((&parts, &tree), (&after, &pruned));
+        assert_close(prepared.iou_edited(&edit), whole, 1e-9);
+    }
+}
