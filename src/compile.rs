@@ -15,7 +15,7 @@ use crate::analysis::project::{Faces, project_onto};
 use crate::analysis::ranges::{Range, ranges};
 use crate::analysis::reparam::{Expression, Solution, anchor_rows_at, solve};
 use crate::analysis::tolerance::Tolerance;
-use crate::analysis::{find_candidates, prior};
+use crate::analysis::{find_candidates_for, prior};
 use crate::back::emit::{Blend, EmitPlan, Slider, Switch, emit, number};
 use crate::front::ast::{ExprKind, StmtKind};
 use crate::front::load::Loaded;
@@ -458,10 +458,10 @@ pub fn reparameterize(
     options: &Options,
 ) -> Compiled {
     let d = model.slots.len();
-    let candidates = find_candidates(model);
+    let raw: Vec<Vec<f64>> = variations.iter().map(|v| v.values.clone()).collect();
+    let candidates = find_candidates_for(model, &raw);
     let faces = Faces::of(model);
     let sim = VolumeSimilarity::new(model);
-    let raw: Vec<Vec<f64>> = variations.iter().map(|v| v.values.clone()).collect();
     let optional = optional_parts(model.parts.len(), &raw, &sim);
     // A part a variation does without keeps the model's own shape there, so presets and
     // blends never shrink it to nothing (its switch hides it instead).

@@ -49,3 +49,70 @@ fn bottle() {
     // Six, plus the cone's top radius, which no relation touches.
     assert_eq!(counts("bottle"), (19, 20, 7));
 }
+
+/// A row of `n` stools (four legs and a seat each) written out literal by literal: every
+/// leg of every stool is 5 wide and 40 tall, a run of far more than `LARGE_RUN` equal
+/// features.
+fn stools(n: usize, scale: f64) -> String {
+    let mut s = String::new();
+    for i in 0..n {
+        let x = i as f64 * 100.0;
+        let h = 40.0 * scale;
+        for (dx, dy) in [(0.0, 0.0), (25.0, 0.0), (0.0, 25.0), (25.0, 25.0)] {
+            s.push_str(&format!(
+                "translate([{}, {dy}, 0]) cube([5, 5, {h}]);\n",
+                x + dx
+            ));
+        }
+        s.push_str(&format!("translate([{x}, 0, {h}]) cube([30, 30, 4]);\n"));
+    }
+    s
+}
+
+#[test]
+fn large_runs_list_few_pairs_but_count_all_and_span_the_same_space() {
+    let dir = std::env::temp_dir().join(format!("reparamc-runs-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("stools.scad");
+    std::fs::write(&path, stools(12, 1.0)).unwrap();
+    let mut sources = SourceMap::new();
+    let model = reparamc::load_model(&mut sources, &path).unwrap().model;
+    // Two variations: every stool grows alike, so legs stay equal across stools.
+    let mut variations = Vec::new();
+    for scale in [0.8, 1.3] {
+        let p = dir.join(format!("v{scale}.scad"));
+        std::fs::write(&p, stools(12, scale)).unwrap();
+        let v = reparamc::load_model(&mut sources, &p).unwrap().model;
+        variations.push(v.slot_values());
+    }
+    let all = find_candidates(&model);
+    let some = reparamc::analysis::find_candidates_for(&model, &variations);
+    assert!(
+        some.list.len() * 2 < all.list.len(),
+        "{} of {} pairs listed",
+        some.list.len(),
+        all.list.len()
+    );
+    assert_eq!(some.total(), all.total(), "the paper's count is every pair");
+    let span = |c: &reparamc::analysis::Candidates| {
+        let rows: Vec<_> = c.list.iter().flat_map(|c| c.rows.iter()).collect();
+        linalg::nullity(&rows, model.slots.len())
+    };
+    assert_eq!(span(&some), span(&all));
+    // What the variations keep (candidates they all satisfy) spans the same space too.
+    let kept = |c: &reparamc::analysis::Candidates| {
+        let rows: Vec<_> = c
+            .list
+            .iter()
+            .filter(|k| {
+                k.rows
+                    .iter()
+                    .all(|r| variations.iter().all(|v| r.eval(v).abs() < 1e-9))
+            })
+            .flat_map(|c| c.rows.iter())
+            .collect();
+        linalg::nullity(&rows, model.slots.len())
+    };
+    assert_eq!(kept(&some), kept(&all));
+    std::fs::remove_dir_all(&dir).ok();
+}

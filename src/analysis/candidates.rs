@@ -84,6 +84,9 @@ pub struct Candidates {
     /// Pairs inside one class, per kind: they hold for every setting (same forms), so they
     /// are counted but constrain nothing.
     pub identical: std::collections::BTreeMap<RelationKind, usize>,
+    /// Pairs that hold but are left out of `list` (see [`find_candidates_for`]), per kind:
+    /// counted, not offered to discovery.
+    pub unlisted: std::collections::BTreeMap<RelationKind, usize>,
     pub tolerance: Tolerance,
 }
 
@@ -111,6 +114,7 @@ impl Candidates {
             .map(|c| c.multiplicity)
             .sum::<usize>()
             + self.identical.get(&kind).copied().unwrap_or(0)
+            + self.unlisted.get(&kind).copied().unwrap_or(0)
     }
 
     /// The paper's "base constraints": every holding pair, redundant or not.
@@ -163,6 +167,25 @@ fn relation_of(kind: FeatureKind) -> (RelationKind, u8) {
 
 /// Finds every candidate that holds on the model.
 pub fn find_candidates(model: &Model) -> Candidates {
+    find_candidates_for(model, &[])
+}
+
+/// Runs of equal features longer than this are not paired all with all for discovery.
+pub const LARGE_RUN: usize = 32;
+/// In a large run, each feature is paired with this many neighbours (see below).
+pub const RUN_NEIGHBOURS: usize = 8;
+
+/// Finds every candidate that holds on the model, listing for discovery only what the
+/// `variations` (slot values) can tell apart.
+///
+/// A run of many equal features (the same leg height in 125 chairs) holds n(n−1)/2 pairs,
+/// nearly all redundant: relations among features that stay equal in every variation span
+/// the same space as a chain through them. In a run longer than [`LARGE_RUN`], features are
+/// ordered by their values in the variations (features equal in all of them become
+/// neighbours) and each is paired with its next [`RUN_NEIGHBOURS`]; the other pairs are
+/// counted in `unlisted`, so the paper's count stays the same. Without variations every
+/// pair is listed.
+pub fn find_candidates_for(model: &Model, variations: &[Vec<f64>]) -> Candidates {
     let tolerance = Tolerance::for_size(model.size());
     let all = affine_features(model);
     // Classes of identical features (same relation group, same forms).
@@ -190,47 +213,100 @@ pub fn find_candidates(model: &Model) -> Candidates {
         groups.entry((kind, g)).or_default().push(i);
     }
     let mut list = Vec::new();
+    let mut unlisted: std::collections::BTreeMap<RelationKind, usize> = Default::default();
+    let holds = |x: usize, y: usize| {
+        features[x]
+            .values
+            .iter()
+            .zip(&features[y].values)
+            .all(|(&p, &q)| tolerance.equal(p, q))
+    };
+    let signature = |x: usize| -> Vec<i64> {
+        variations
+            .iter()
+            .flat_map(|v| features[x].forms.iter().map(move |f| f.eval(v)))
+            .map(|v| (v / tolerance.epsilon).round().clamp(-9e15, 9e15) as i64)
+            .collect()
+    };
     for ((kind, _), mut members) in groups {
         members.sort_by(|&x, &y| features[x].values[0].total_cmp(&features[y].values[0]));
-        for (pos, &x) in members.iter().enumerate() {
-            let fx = &features[x];
-            for &y in &members[pos + 1..] {
-                let fy = &features[y];
-                if fy.values[0] - fx.values[0] > tolerance.epsilon {
-                    break;
-                }
-                let holds = fx
-                    .values
-                    .iter()
-                    .zip(&fy.values)
-                    .all(|(&p, &q)| tolerance.equal(p, q));
-                if holds {
-                    let (a, b) = if x < y { (x, y) } else { (y, x) };
-                    let rows = features[a]
-                        .forms
-                        .iter()
-                        .zip(&features[b].forms)
-                        .map(|(p, q)| p.sub(q))
-                        .collect();
-                    let multiplicity = class_sizes[a] * class_sizes[b];
-                    list.push(Candidate {
-                        kind,
-                        a,
-                        b,
-                        rows,
-                        multiplicity,
-                    });
-                }
+        let mut pairs: Vec<(usize, usize)> = Vec::new();
+        let mut start = 0;
+        while start < members.len() {
+            // A run: members whose first values chain within the tolerance.
+            let mut end = start + 1;
+            while end < members.len()
+                && features[members[end]].values[0] - features[members[end - 1]].values[0]
+                    <= tolerance.epsilon
+            {
+                end += 1;
             }
+            let run = &members[start..end];
+            if run.len() <= LARGE_RUN || variations.is_empty() {
+                for (pos, &x) in run.iter().enumerate() {
+                    for &y in &run[pos + 1..] {
+                        if features[y].values[0] - features[x].values[0] > tolerance.epsilon {
+                            break;
+                        }
+                        if holds(x, y) {
+                            pairs.push((x, y));
+                        }
+                    }
+                }
+            } else {
+                let mut all = 0usize;
+                for (pos, &x) in run.iter().enumerate() {
+                    for &y in &run[pos + 1..] {
+                        if features[y].values[0] - features[x].values[0] > tolerance.epsilon {
+                            break;
+                        }
+                        if holds(x, y) {
+                            all += class_sizes[x] * class_sizes[y];
+                        }
+                    }
+                }
+                let mut order: Vec<(Vec<i64>, usize)> =
+                    run.iter().map(|&x| (signature(x), x)).collect();
+                order.sort();
+                let mut listed = 0usize;
+                for (pos, (_, x)) in order.iter().enumerate() {
+                    for (_, y) in order.iter().skip(pos + 1).take(RUN_NEIGHBOURS) {
+                        if holds(*x, *y) {
+                            pairs.push((*x, *y));
+                            listed += class_sizes[*x] * class_sizes[*y];
+                        }
+                    }
+                }
+                *unlisted.entry(kind).or_insert(0) += all.saturating_sub(listed);
+            }
+            start = end;
+        }
+        for (x, y) in pairs {
+            let (a, b) = if x < y { (x, y) } else { (y, x) };
+            let rows = features[a]
+                .forms
+                .iter()
+                .zip(&features[b].forms)
+                .map(|(p, q)| p.sub(q))
+                .collect();
+            list.push(Candidate {
+                kind,
+                a,
+                b,
+                rows,
+                multiplicity: class_sizes[a] * class_sizes[b],
+            });
         }
     }
     list.sort_by_key(|c| (c.kind, c.a, c.b));
     identical.retain(|_, n| *n > 0);
+    unlisted.retain(|_, n| *n > 0);
     Candidates {
         features,
         class_sizes,
         list,
         identical,
+        unlisted,
         tolerance,
     }
 }

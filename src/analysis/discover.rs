@@ -17,6 +17,7 @@
 //! blocks they touch (`project`), and IoU integrates only around the parts that moved.
 
 use super::candidates::Candidates;
+use super::pool::Pool;
 use super::project::{Faces, Projector, SlotBlocks};
 use super::rowbasis::RowBasis;
 use crate::ir::Affine;
@@ -174,9 +175,7 @@ pub fn discover<S: Similarity>(
         members: HashMap::new(),
     };
     chosen.members = chosen.blocks.members();
-    let mut remaining: Vec<usize> = (0..candidates.list.len())
-        .filter(|&i| !implied(&chosen.basis, &rows_of(candidates, i)))
-        .collect();
+    let mut pool = Pool::new(tiers, |i| !implied(&chosen.basis, &rows_of(candidates, i)));
     // Which candidates hold each slot: what to look at again when slots move or the basis
     // changes around them.
     let mut by_slot: Vec<Vec<u32>> = vec![Vec::new(); slots];
@@ -187,10 +186,6 @@ pub fn discover<S: Similarity>(
         for s in mine {
             by_slot[s as usize].push(i as u32);
         }
-    }
-    let mut alive = vec![false; candidates.list.len()];
-    for &c in &remaining {
-        alive[c] = true;
     }
     let mut vars: Vec<Variation<'_, S::Reference>> = samples
         .iter()
@@ -226,22 +221,19 @@ pub fn discover<S: Similarity>(
         let rows = rows_of(candidates, c);
         vars.iter().all(|v| satisfied(&rows, &v.current, holds))
     };
-    let mut exact: Vec<bool> = (0..candidates.list.len())
-        .map(|c| alive[c] && exact_now(c, &vars))
-        .collect();
-    while !remaining.is_empty() && !samples.is_empty() {
-        let tier = remaining.iter().map(|&c| tiers[c]).min().unwrap_or(0);
-        let batch: Vec<usize> = remaining
-            .iter()
-            .copied()
-            .filter(|&c| tiers[c] == tier && exact[c])
-            .collect();
+    for c in 0..candidates.list.len() {
+        if pool.is_alive(c) && exact_now(c, &vars) {
+            pool.set_exact(c, true);
+        }
+    }
+    while let Some(tier) = pool.lowest_tier().filter(|_| !samples.is_empty()) {
+        let batch = pool.exact_in(tier);
         let mut gone: Vec<usize> = Vec::new();
         let mut changed: Vec<u32> = Vec::new();
         if !batch.is_empty() {
             for c in batch {
                 let rows = rows_of(candidates, c);
-                alive[c] = false;
+                pool.kill(c);
                 if implied(&chosen.basis, &rows) {
                     gone.push(c);
                     continue;
@@ -259,9 +251,8 @@ pub fn discover<S: Similarity>(
             let Some((score, c)) = best_candidate(
                 faces,
                 candidates,
-                tiers,
                 tier,
-                &remaining,
+                &mut pool,
                 &mut vars,
                 &mut chosen,
                 sim,
@@ -299,14 +290,16 @@ pub fn discover<S: Similarity>(
             for &s in &moved_any {
                 for &k in &by_slot[s as usize] {
                     let k = k as usize;
-                    exact[k] = alive[k] && exact_now(k, &vars);
+                    if pool.is_alive(k) {
+                        pool.set_exact(k, exact_now(k, &vars));
+                    }
                 }
             }
             forget(&mut cache, &by_slot, dirty);
             out.worst
                 .push(sims.iter().fold(0.0, |w, s| f64::max(w, 1.0 - s)));
             changed.extend(chosen.add(&rows));
-            alive[c] = false;
+            pool.kill(c);
             let mean = vars.iter().map(|v| v.fidelity).sum::<f64>() / vars.len() as f64;
             out.order.push(c);
             out.scores.push(score);
@@ -327,13 +320,12 @@ pub fn discover<S: Similarity>(
         for s in pivots {
             for &k in &by_slot[s as usize] {
                 let k = k as usize;
-                if alive[k] && implied(&chosen.basis, &rows_of(candidates, k)) {
-                    alive[k] = false;
+                if pool.is_alive(k) && implied(&chosen.basis, &rows_of(candidates, k)) {
+                    pool.kill(k);
                     gone.push(k);
                 }
             }
         }
-        remaining.retain(|&c| alive[c]);
         gone.sort_unstable();
         if let Some(last) = out.implied.last_mut() {
             *last = gone;
@@ -349,9 +341,8 @@ pub fn discover<S: Similarity>(
 fn best_candidate<S: Similarity>(
     faces: &Faces,
     candidates: &Candidates,
-    tiers: &[u8],
     tier: u8,
-    remaining: &[usize],
+    pool: &mut Pool,
     vars: &mut [Variation<'_, S::Reference>],
     chosen: &mut Chosen,
     sim: &S,
@@ -362,7 +353,7 @@ fn best_candidate<S: Similarity>(
     // Candidates equal modulo the chosen rows, with equal residuals, project every variation
     // to the same point: they are scored once.
     let mut by_class: HashMap<Vec<i64>, Vec<f64>> = HashMap::new();
-    for &c in remaining.iter().filter(|&&c| tiers[c] == tier) {
+    for c in pool.members(tier) {
         if cache[c].is_none() {
             let rows = rows_of(candidates, c);
             let class = projection_class(&chosen.basis, &rows, vars, scale);

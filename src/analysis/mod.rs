@@ -11,6 +11,7 @@ pub mod linalg;
 pub mod names;
 pub mod noise;
 pub mod optional;
+pub mod pool;
 pub mod prior;
 pub mod project;
 pub mod ranges;
@@ -18,4 +19,4 @@ pub mod reparam;
 pub mod rowbasis;
 pub mod tolerance;
 
-pub use candidates::{Candidate, Candidates, RelationKind, find_candidates};
+pub use candidates::{Candidate, Candidates, RelationKind, find_candidates, find_candidates_for};

@@ -221,10 +221,37 @@ struct Block {
     /// Row of `null` for each slot of the block.
     index: HashMap<SlotId, usize>,
     slots: Vec<SlotId>,
-    /// `|slots| × r`: a basis of the chosen rows' null space inside the block.
-    null: DMatrix<f64>,
+    /// `|slots| × r`, row by row as sparse (column, value) lists: a basis of the chosen
+    /// rows' null space inside the block. A free slot's row is its own unit column; a
+    /// pivot's row holds its row-echelon coefficients, so `N` has the rows' fill, no more.
+    null: Vec<Vec<(usize, f64)>>,
+    /// `r`, the block's free dimension.
+    rank: usize,
     /// Cholesky factor of `NᵀHN` (`None` when the rows fix the block: `r = 0`).
     gram: Option<nalgebra::Cholesky<f64, nalgebra::Dyn>>,
+}
+
+/// `Σ a·v` over the sparse rows `v` (of `N`) picked by a sparse combination: a sparse
+/// combination of `N`'s rows, merged by column.
+fn combine<'a>(
+    parts: impl IntoIterator<Item = (f64, &'a [(usize, f64)])>,
+    out: &mut Vec<(usize, f64)>,
+) {
+    out.clear();
+    for (a, row) in parts {
+        for &(j, v) in row {
+            out.push((j, a * v));
+        }
+    }
+    out.sort_unstable_by_key(|&(j, _)| j);
+    out.dedup_by(|next, kept| {
+        if next.0 == kept.0 {
+            kept.1 += next.1;
+            true
+        } else {
+            false
+        }
+    });
 }
 
 impl Block {
@@ -238,19 +265,18 @@ impl Block {
             .collect();
         let column: HashMap<SlotId, usize> =
             free.iter().enumerate().map(|(j, &s)| (s, j)).collect();
-        let mut null = DMatrix::<f64>::zeros(slots.len(), free.len());
-        for (i, &s) in slots.iter().enumerate() {
-            match basis.row_with_pivot(s) {
-                None => null[(i, column[&s])] = 1.0,
-                Some(row) => {
-                    for &(t, a) in row.terms.iter().filter(|&&(t, _)| t != s) {
-                        if let Some(&j) = column.get(&t) {
-                            null[(i, j)] = -a;
-                        }
-                    }
-                }
-            }
-        }
+        let null: Vec<Vec<(usize, f64)>> = slots
+            .iter()
+            .map(|&s| match basis.row_with_pivot(s) {
+                None => vec![(column[&s], 1.0)],
+                Some(row) => row
+                    .terms
+                    .iter()
+                    .filter(|&&(t, _)| t != s)
+                    .filter_map(|&(t, a)| Some((*column.get(&t)?, -a)))
+                    .collect(),
+            })
+            .collect();
         let r = free.len();
         let gram = (r > 0).then(|| {
             let mut entries: Vec<u32> = slots
@@ -259,39 +285,58 @@ impl Block {
                 .collect();
             entries.sort_unstable();
             entries.dedup();
-            let faces_here: Vec<(f64, &Affine)> = faces.weighted_faces(metric, &entries).collect();
-            // G's rows are area·Nᵀq, so NᵀHN = GᵀG + ridge·NᵀN.
-            let mut g = DMatrix::<f64>::zeros(faces_here.len(), r);
-            for (row, (w2, q)) in faces_here.iter().enumerate() {
-                let w = w2.sqrt();
-                for &(s, a) in &q.terms {
-                    if let Some(&i) = index.get(&s) {
-                        for j in 0..r {
-                            g[(row, j)] += w * a * null[(i, j)];
-                        }
+            // NᵀHN = Σ area² (Nᵀq)(Nᵀq)ᵀ + ridge·NᵀN, each term a sparse outer product.
+            let mut m = DMatrix::<f64>::zeros(r, r);
+            let mut outer = |w2: f64, g: &[(usize, f64)]| {
+                for &(i, a) in g {
+                    for &(j, b) in g {
+                        m[(i, j)] += w2 * a * b;
                     }
                 }
+            };
+            let mut g = Vec::new();
+            for (w2, q) in faces.weighted_faces(metric, &entries) {
+                combine(
+                    q.terms
+                        .iter()
+                        .filter_map(|&(s, a)| Some((a, null[*index.get(&s)?].as_slice()))),
+                    &mut g,
+                );
+                outer(w2, &g);
             }
-            let m = g.transpose() * &g + null.transpose() * &null * metric.ridge;
+            for row in &null {
+                outer(metric.ridge, row);
+            }
             positive_definite_factor(m)
         });
         Block {
             index,
             slots,
             null,
+            rank: r,
             gram,
         }
     }
 
     /// `Nᵀ nᵀ` for the part of `row` inside this block.
     fn reduced(&self, row: &Affine) -> DVector<f64> {
-        let mut w = DVector::zeros(self.null.ncols());
+        let mut w = DVector::zeros(self.rank);
         for &(s, a) in &row.terms {
             if let Some(&i) = self.index.get(&s) {
-                w.axpy(a, &self.null.row(i).transpose(), 1.0);
+                for &(j, v) in &self.null[i] {
+                    w[j] += a * v;
+                }
             }
         }
         w
+    }
+
+    /// `N z`, slot by slot of the block.
+    fn expand(&self, z: &DVector<f64>) -> Vec<f64> {
+        self.null
+            .iter()
+            .map(|row| row.iter().map(|&(j, v)| v * z[j]).sum())
+            .collect()
     }
 }
 
@@ -390,7 +435,7 @@ impl Projector {
         let mut out = Vec::new();
         for (root, u) in parts {
             let block = &self.blocks[&root];
-            let delta = &block.null * (u * &lambda);
+            let delta = block.expand(&(u * &lambda));
             for (i, &s) in block.slots.iter().enumerate() {
                 if delta[i] != 0.0 {
                     out.push((s, -delta[i]));
@@ -452,7 +497,7 @@ pub fn project_onto(faces: &Faces, x: &[f64], rows: &[&Affine], skip: &[usize]) 
             terms: hv.into_iter().collect(),
         };
         let z = gram.solve(&block.reduced(&as_row));
-        let step = &block.null * z;
+        let step = block.expand(&z);
         for (i, &s) in block.slots.iter().enumerate() {
             p[s as usize] -= step[i];
         }

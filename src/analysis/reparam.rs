@@ -163,6 +163,98 @@ fn column_order(model: &Model) -> Vec<usize> {
     order
 }
 
+/// One row of the elimination: coefficients by column position (in elimination order).
+struct SparseRow {
+    terms: std::collections::HashMap<usize, f64>,
+    constant: f64,
+}
+
+/// Gauss–Jordan elimination of the affine `system` with columns taken in `order`, partial
+/// pivoting (largest entry of the column among the rows not yet used) and every other row
+/// cleared at each pivot: the reduced row-echelon form, row `k` pivoting on `pivots[k]`.
+/// Sparse: a column index finds the rows to clear, so the cost follows the rows' fill.
+fn gauss_jordan(system: &[Affine], order: &[usize]) -> (Vec<SparseRow>, Vec<usize>) {
+    let mut position = vec![0usize; order.len()];
+    for (p, &s) in order.iter().enumerate() {
+        position[s] = p;
+    }
+    let mut rows: Vec<SparseRow> = system
+        .iter()
+        .map(|r| {
+            let mut terms = std::collections::HashMap::new();
+            for &(s, a) in &r.terms {
+                *terms.entry(position[s as usize]).or_insert(0.0) += a;
+            }
+            terms.retain(|_, a: &mut f64| *a != 0.0);
+            SparseRow {
+                terms,
+                constant: r.constant,
+            }
+        })
+        .collect();
+    let mut holders: Vec<std::collections::BTreeSet<usize>> = vec![Default::default(); order.len()];
+    for (i, r) in rows.iter().enumerate() {
+        for &c in r.terms.keys() {
+            holders[c].insert(i);
+        }
+    }
+    let m = rows.len();
+    let mut used = vec![false; m];
+    let mut pivot_rows: Vec<usize> = Vec::new();
+    let mut pivots = Vec::new();
+    for col in 0..order.len() {
+        if pivot_rows.len() == m {
+            break;
+        }
+        let Some(p) = holders[col]
+            .iter()
+            .copied()
+            .filter(|&i| !used[i])
+            .max_by(|&i, &j| {
+                rows[i].terms[&col]
+                    .abs()
+                    .total_cmp(&rows[j].terms[&col].abs())
+            })
+        else {
+            continue;
+        };
+        if rows[p].terms[&col].abs() < 1e-9 {
+            continue;
+        }
+        let pv = rows[p].terms[&col];
+        for v in rows[p].terms.values_mut() {
+            *v /= pv;
+        }
+        rows[p].constant /= pv;
+        let pivot_terms: Vec<(usize, f64)> = rows[p].terms.iter().map(|(&c, &v)| (c, v)).collect();
+        let pivot_constant = rows[p].constant;
+        let others: Vec<usize> = holders[col].iter().copied().filter(|&i| i != p).collect();
+        for i in others {
+            let f = rows[i].terms[&col];
+            for &(c, v) in &pivot_terms {
+                let e = rows[i].terms.entry(c).or_insert(0.0);
+                *e -= f * v;
+                if *e == 0.0 || c == col {
+                    rows[i].terms.remove(&c);
+                    holders[c].remove(&i);
+                } else {
+                    holders[c].insert(i);
+                }
+            }
+            rows[i].constant -= f * pivot_constant;
+        }
+        used[p] = true;
+        pivot_rows.push(p);
+        pivots.push(col);
+    }
+    let mut taken: Vec<Option<SparseRow>> = rows.into_iter().map(Some).collect();
+    let ordered = pivot_rows
+        .iter()
+        .map(|&p| taken[p].take().expect("each row pivots once"))
+        .collect();
+    (ordered, pivots)
+}
+
 /// Solves `rows` (affine, each `= 0`) plus the anchors for the free slots.
 pub fn solve(model: &Model, rows: &[Affine]) -> Solution {
     let d = model.slots.len();
@@ -181,47 +273,12 @@ pub fn solve(model: &Model, rows: &[Affine]) -> Solution {
         }
     }
     let order = column_order(model);
-    // Augmented matrix in column order: [A | constant].
-    let m = system.len();
-    let mut a: Vec<Vec<f64>> = system
-        .iter()
-        .map(|r| {
-            let mut row: Vec<f64> = order.iter().map(|&s| r.coeff(s as SlotId)).collect();
-            row.push(r.constant);
-            row
-        })
-        .collect();
-    let mut pivots: Vec<usize> = Vec::new();
-    let mut row = 0;
-    for col in 0..d {
-        if row == m {
-            break;
-        }
-        let Some(p) = (row..m).max_by(|&i, &j| a[i][col].abs().total_cmp(&a[j][col].abs())) else {
-            break;
-        };
-        if a[p][col].abs() < 1e-9 {
-            continue;
-        }
-        a.swap(row, p);
-        let pv = a[row][col];
-        for v in a[row].iter_mut() {
-            *v /= pv;
-        }
-        let pivot_row = a[row].clone();
-        for (i, r) in a.iter_mut().enumerate() {
-            if i != row && r[col] != 0.0 {
-                let f = r[col];
-                for (x, y) in r.iter_mut().zip(&pivot_row) {
-                    *x -= f * y;
-                }
-            }
-        }
-        pivots.push(col);
-        row += 1;
-    }
+    let (a, pivots) = gauss_jordan(&system, &order);
     let snap = |x: f64| Frac::near(x).map_or(x, |f| f.value());
-    let is_pivot: Vec<bool> = (0..d).map(|c| pivots.contains(&c)).collect();
+    let mut is_pivot = vec![false; d];
+    for &c in &pivots {
+        is_pivot[c] = true;
+    }
     let free_cols: Vec<usize> = (0..d).filter(|&c| !is_pivot[c]).collect();
     let mut free: Vec<SlotId> = free_cols.iter().map(|&c| order[c] as SlotId).collect();
     free.sort_unstable();
@@ -241,14 +298,15 @@ pub fn solve(model: &Model, rows: &[Affine]) -> Solution {
     }
     for (r, &pc) in pivots.iter().enumerate() {
         let slot = order[pc];
-        let mut terms: Vec<(usize, f64)> = free_cols
+        let mut terms: Vec<(usize, f64)> = a[r]
+            .terms
             .iter()
-            .filter(|&&c| a[r][c].abs() > 1e-12)
-            .filter_map(|&c| Some((free_index(order[c])?, snap(-a[r][c]))))
+            .filter(|&(&c, v)| c != pc && !is_pivot[c] && v.abs() > 1e-12)
+            .filter_map(|(&c, &v)| Some((free_index(order[c])?, snap(-v))))
             .collect();
         terms.sort_by_key(|t| t.0);
         exprs[slot] = Expression {
-            constant: -a[r][d],
+            constant: -a[r].constant,
             terms,
         };
     }
