@@ -117,19 +117,33 @@ struct Chosen {
     basis: RowBasis,
     blocks: SlotBlocks,
     members: HashMap<u32, Vec<u32>>,
+    /// Whether blocks were joined since `members` was listed.
+    joined: bool,
 }
 
 impl Chosen {
-    /// Adds a candidate's rows; returns the slots whose blocks changed.
-    fn add(&mut self, rows: &[&Affine]) -> Vec<u32> {
-        let mut changed = Vec::new();
+    /// Adds a candidate's rows. A row inside one block enters each variation's factored
+    /// block as a rank-one correction; a row joining blocks makes them factor afresh.
+    fn add<R>(&mut self, rows: &[&Affine], vars: &mut [Variation<'_, R>]) {
         for r in rows {
-            if self.basis.add_terms(&r.terms) {
+            let mut roots: Vec<u32> = r.slots().map(|s| self.blocks.find(s)).collect();
+            roots.sort_unstable();
+            roots.dedup();
+            if !self.basis.add_terms(&r.terms) {
+                continue;
+            }
+            if roots.len() == 1 {
+                for v in vars.iter_mut() {
+                    v.projector.absorb(roots[0], r);
+                }
+            } else {
+                for v in vars.iter_mut() {
+                    v.projector.forget(&roots);
+                }
                 self.blocks.join(r.slots());
-                changed.extend(r.slots());
+                self.joined = true;
             }
         }
-        changed
     }
 }
 
@@ -173,6 +187,7 @@ pub fn discover<S: Similarity>(
         basis: RowBasis::default(),
         blocks: SlotBlocks::of(faces),
         members: HashMap::new(),
+        joined: false,
     };
     chosen.members = chosen.blocks.members();
     let mut pool = Pool::new(tiers, |i| !implied(&chosen.basis, &rows_of(candidates, i)));
@@ -229,7 +244,6 @@ pub fn discover<S: Similarity>(
     while let Some(tier) = pool.lowest_tier().filter(|_| !samples.is_empty()) {
         let batch = pool.exact_in(tier);
         let mut gone: Vec<usize> = Vec::new();
-        let mut changed: Vec<u32> = Vec::new();
         if !batch.is_empty() {
             for c in batch {
                 let rows = rows_of(candidates, c);
@@ -238,7 +252,7 @@ pub fn discover<S: Similarity>(
                     gone.push(c);
                     continue;
                 }
-                changed.extend(chosen.add(&rows));
+                chosen.add(&rows, &mut vars);
                 forget(&mut cache, &by_slot, rows.iter().flat_map(|r| r.slots()));
                 out.order.push(c);
                 out.scores.push(1.0);
@@ -298,7 +312,7 @@ pub fn discover<S: Similarity>(
             forget(&mut cache, &by_slot, dirty);
             out.worst
                 .push(sims.iter().fold(0.0, |w, s| f64::max(w, 1.0 - s)));
-            changed.extend(chosen.add(&rows));
+            chosen.add(&rows, &mut vars);
             pool.kill(c);
             let mean = vars.iter().map(|v| v.fidelity).sum::<f64>() / vars.len() as f64;
             out.order.push(c);
@@ -307,11 +321,9 @@ pub fn discover<S: Similarity>(
             out.curve.push(1.0 - mean);
             out.implied.push(Vec::new());
         }
-        if !changed.is_empty() {
-            for v in vars.iter_mut() {
-                v.projector.invalidate(&mut chosen.blocks, &changed);
-            }
+        if chosen.joined {
             chosen.members = chosen.blocks.members();
+            chosen.joined = false;
         }
         // Only candidates holding a pivot whose row changed can have become implied.
         let mut pivots = chosen.basis.take_touched();

@@ -11,8 +11,10 @@
 //! both ([`SlotBlocks`]). `H` and the rows are block-diagonal, so a projection solves only in
 //! the blocks a candidate's rows touch, in null-space form: with `N` a basis of the chosen
 //! rows' null space inside the block, `K = N (NᵀHN)⁻¹ Nᵀ`, and adding a candidate's rows `n`
-//! moves `x` by `−K nᵀ (n K nᵀ)⁺ (n x + c)`. A block is factored once per basis change and
-//! only when a projection needs it, so exactly satisfied candidates cost nothing.
+//! moves `x` by `−K nᵀ (n K nᵀ)⁺ (n x + c)`. A block is factored only when a projection
+//! needs it; a row chosen inside a factored block enters it as a rank-one correction
+//! `K ← K − K nᵀ n K / (n K nᵀ)` (up to [`MAX_CORRECTIONS`], then it is factored afresh), and
+//! a row joining blocks drops their factors.
 
 use super::rowbasis::RowBasis;
 use crate::analysis::linalg;
@@ -229,7 +231,13 @@ struct Block {
     rank: usize,
     /// Cholesky factor of `NᵀHN` (`None` when the rows fix the block: `r = 0`).
     gram: Option<nalgebra::Cholesky<f64, nalgebra::Dyn>>,
+    /// Rows chosen since the factorisation, as rank-one corrections `K ← K − u uᵀ / s`
+    /// (`u = K nᵀ` over the block's slots, `s = n K nᵀ`).
+    corrections: Vec<(Vec<f64>, f64)>,
 }
+
+/// A block is factored afresh once this many rows were absorbed as corrections.
+const MAX_CORRECTIONS: usize = 32;
 
 /// `Σ a·v` over the sparse rows `v` (of `N`) picked by a sparse combination: a sparse
 /// combination of `N`'s rows, merged by column.
@@ -315,7 +323,33 @@ impl Block {
             null,
             rank: r,
             gram,
+            corrections: Vec::new(),
         }
+    }
+
+    /// `K nᵀ` over the block's slots, for the part of `row` inside the block.
+    fn k_column(&self, row: &Affine) -> Vec<f64> {
+        let mut col = match &self.gram {
+            Some(gram) => self.expand(&gram.solve(&self.reduced(row))),
+            None => vec![0.0; self.slots.len()],
+        };
+        for (u, s) in &self.corrections {
+            let d = self.dot(row, u);
+            if d != 0.0 {
+                for (c, v) in col.iter_mut().zip(u) {
+                    *c -= v * d / s;
+                }
+            }
+        }
+        col
+    }
+
+    /// `n · v` for the part of `row` inside the block and `v` over its slots.
+    fn dot(&self, row: &Affine, v: &[f64]) -> f64 {
+        row.terms
+            .iter()
+            .filter_map(|&(s, a)| Some(a * v[*self.index.get(&s)?]))
+            .sum()
     }
 
     /// `Nᵀ nᵀ` for the part of `row` inside this block.
@@ -382,14 +416,29 @@ impl Projector {
         }
     }
 
-    /// Forgets the factored blocks that are no longer current: every block holding a slot
-    /// of `changed` (after joining), and every block that was merged into another.
-    pub fn invalidate(&mut self, blocks: &mut SlotBlocks, changed: &[SlotId]) {
-        for &s in changed {
-            let r = blocks.find(s);
-            self.blocks.remove(&r);
+    /// Takes a row newly added to the chosen basis, lying inside the block `root`, into that
+    /// block's factorisation as a rank-one correction (or forgets the block when it has
+    /// gathered enough of them, so it is factored afresh when next needed).
+    pub fn absorb(&mut self, root: SlotId, row: &Affine) {
+        let Some(block) = self.blocks.get_mut(&root) else {
+            return;
+        };
+        if block.corrections.len() >= MAX_CORRECTIONS {
+            self.blocks.remove(&root);
+            return;
         }
-        self.blocks.retain(|&r, _| blocks.find(r) == r);
+        let u = block.k_column(row);
+        let s = block.dot(row, &u);
+        if s > 0.0 && s.is_finite() {
+            block.corrections.push((u, s));
+        }
+    }
+
+    /// Forgets the factored blocks of these representatives (blocks about to be joined).
+    pub fn forget(&mut self, roots: &[SlotId]) {
+        for r in roots {
+            self.blocks.remove(r);
+        }
     }
 
     /// How `x` (which satisfies `basis`) moves so that `rows` also hold, as sparse
@@ -415,30 +464,29 @@ impl Projector {
         touched.dedup();
         let k = rows.len();
         let mut m = DMatrix::<f64>::zeros(k, k);
-        // Per touched block: the columns K nᵢᵀ in reduced form, u = (NᵀHN)⁻¹ Nᵀ nᵀ.
-        let mut parts: Vec<(SlotId, DMatrix<f64>)> = Vec::new();
+        // Per touched block: the columns K nᵢᵀ over its slots.
+        let mut parts: Vec<(SlotId, Vec<Vec<f64>>)> = Vec::new();
         for &root in &touched {
             let block = self.blocks.entry(root).or_insert_with(|| {
                 Block::build(faces, &self.metric, basis, members[&root].clone())
             });
-            let Some(gram) = &block.gram else {
-                continue;
-            };
-            let w =
-                DMatrix::from_columns(&rows.iter().map(|r| block.reduced(r)).collect::<Vec<_>>());
-            let u = gram.solve(&w);
-            m += w.transpose() * &u;
-            parts.push((root, u));
+            let cols: Vec<Vec<f64>> = rows.iter().map(|r| block.k_column(r)).collect();
+            for (i, r) in rows.iter().enumerate() {
+                for (j, col) in cols.iter().enumerate() {
+                    m[(i, j)] += block.dot(r, col);
+                }
+            }
+            parts.push((root, cols));
         }
         let e = DVector::from_fn(k, |i, _| rows[i].eval(x));
         let lambda = linalg::pinv(&m) * e;
         let mut out = Vec::new();
-        for (root, u) in parts {
+        for (root, cols) in parts {
             let block = &self.blocks[&root];
-            let delta = block.expand(&(u * &lambda));
             for (i, &s) in block.slots.iter().enumerate() {
-                if delta[i] != 0.0 {
-                    out.push((s, -delta[i]));
+                let delta: f64 = cols.iter().zip(lambda.iter()).map(|(c, l)| c[i] * l).sum();
+                if delta != 0.0 {
+                    out.push((s, -delta));
                 }
             }
         }
