@@ -13,7 +13,7 @@
 //! rows' null space inside the block, `K = N (NᵀHN)⁻¹ Nᵀ`, and adding a candidate's rows `n`
 //! moves `x` by `−K nᵀ (n K nᵀ)⁺ (n x + c)`. A block is factored only when a projection
 //! needs it; a row chosen inside a factored block enters it as a rank-one correction
-//! `K ← K − K nᵀ n K / (n K nᵀ)` (up to [`MAX_CORRECTIONS`], then it is factored afresh), and
+//! `K ← K − K nᵀ n K / (n K nᵀ)` (up to `MAX_CORRECTIONS`, then it is factored afresh), and
 //! a row joining blocks drops their factors.
 
 use super::rowbasis::RowBasis;
