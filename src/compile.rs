@@ -52,6 +52,22 @@ impl<'m> VolumeSimilarity<'m> {
             slot_parts: slot_parts(model),
         }
     }
+
+    /// The parts (outside `skip`) that depend on a `changed` slot, at `a`; `None` when one
+    /// does not evaluate.
+    fn edits(&self, a: &[f64], changed: &[u32], skip: &[usize]) -> Option<Vec<crate::geom::Edit>> {
+        let mut touched: Vec<usize> = changed
+            .iter()
+            .flat_map(|&s| self.slot_parts[s as usize].iter().copied())
+            .filter(|p| !skip.contains(p))
+            .collect();
+        touched.sort_unstable();
+        touched.dedup();
+        touched
+            .into_iter()
+            .map(|p| Some((p, Some(self.model.parts[p].at(a)?))))
+            .collect()
+    }
 }
 
 /// The CSG tree without the `skip` parts (`None` when nothing is left).
@@ -110,21 +126,17 @@ impl Similarity for VolumeSimilarity<'_> {
         if r.solid.parts().len() != self.model.parts.len() {
             return 0.0;
         }
-        let mut touched: Vec<usize> = changed
-            .iter()
-            .flat_map(|&s| self.slot_parts[s as usize].iter().copied())
-            .filter(|p| !r.skip.contains(p))
-            .collect();
-        touched.sort_unstable();
-        touched.dedup();
-        let mut edits: Vec<crate::geom::Edit> = Vec::with_capacity(touched.len());
-        for p in touched {
-            match self.model.parts[p].at(a) {
-                Some(part) => edits.push((p, Some(part))),
-                None => return 0.0,
-            }
+        match self.edits(a, changed, &r.skip) {
+            Some(edits) => r.solid.iou_edited(&edits),
+            None => 0.0,
         }
-        r.solid.iou_edited(&edits)
+    }
+
+    fn update_reference(&self, r: &mut VolumeReference, a: &[f64], changed: &[u32]) {
+        match self.edits(a, changed, &r.skip) {
+            Some(edits) if r.solid.parts().len() == self.model.parts.len() => r.solid.apply(&edits),
+            _ => *r = self.reference(a, &r.skip.clone()),
+        }
     }
 
     fn removal(&self, r: &VolumeReference, part: usize) -> f64 {

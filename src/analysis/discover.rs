@@ -41,6 +41,8 @@ pub trait Similarity: Sync {
         let _ = changed;
         self.similarity_to(a, reference)
     }
+    /// Moves the reference to `a`, which differs from its point only in the `changed` slots.
+    fn update_reference(&self, reference: &mut Self::Reference, a: &[f64], changed: &[u32]);
     /// Between the reference (prepared with no part skipped) and it without `part`.
     fn removal(&self, reference: &Self::Reference, part: usize) -> f64;
 }
@@ -281,17 +283,19 @@ pub fn discover<S: Similarity>(
             let mut moved_any: HashSet<u32> = HashSet::new();
             for v in vars.iter_mut() {
                 let shift = shift_of(v, faces, &mut chosen, &rows);
-                let mut moved = false;
+                let mut moved: Vec<u32> = Vec::new();
                 for (s, delta) in shift {
                     v.current[s as usize] += delta;
                     moved_any.insert(s);
                     if delta.abs() > 1e-9 * scale {
                         dirty.insert(s);
-                        moved = true;
+                        moved.push(s);
                     }
                 }
-                if moved {
-                    v.reference = None;
+                if !moved.is_empty() {
+                    if let Some(r) = v.reference.as_mut() {
+                        sim.update_reference(r, &v.current, &moved);
+                    }
                     let away: Vec<u32> = (0..v.current.len() as u32)
                         .filter(|&s| v.current[s as usize] != v.sample.values[s as usize])
                         .collect();

@@ -240,6 +240,9 @@ fn integrate_pair(a: &Solid, b: &Solid, region: Option<Aabb>) -> Overlap {
 /// One part of a solid replaced (`Some`) or removed (`None`): (part index, new part).
 pub type Edit = (usize, Option<Part>);
 
+/// An edited part's new shape (`None`: removed or degenerate), by part index.
+type NewShape = (usize, Option<Shape>);
+
 /// A solid kept part by part (shapes and bounds prepared once, with its volume), so the IoU
 /// against the same solid with a few parts edited costs an integral over the edited region
 /// and the parts that meet it, not over the whole model.
@@ -280,8 +283,42 @@ impl Prepared {
     /// IoU between this solid and the same solid with `edits` applied (the incremental IoU
     /// of the module docs, with the region where edited parts were or are).
     pub fn iou_edited(&self, edits: &[Edit]) -> f64 {
+        let Some((local, _)) = self.edited_overlap(edits) else {
+            return 1.0;
+        };
+        let outside = (self.volume - local.a).max(0.0);
+        let union = outside + local.union;
+        if union > 0.0 {
+            ((outside + local.inter) / union).clamp(0.0, 1.0)
+        } else {
+            1.0
+        }
+    }
+
+    /// Applies `edits` to this solid, updating its volume by the same local integral.
+    pub fn apply(&mut self, edits: &[Edit]) {
+        let Some((local, replaced)) = self.edited_overlap(edits) else {
+            return;
+        };
+        self.volume = (self.volume - local.a + local.b).max(0.0);
+        for (i, shape) in replaced {
+            self.boxes[i] = shape
+                .as_ref()
+                .map_or(Aabb::empty(), |s| Aabb::new(s.lo, s.hi));
+            self.shapes[i] = shape;
+        }
+        for (i, new) in edits {
+            if let (Some(new), Some(old)) = (new, self.parts.get_mut(*i)) {
+                *old = new.clone();
+            }
+        }
+    }
+
+    /// The overlap, inside the region the edits touch, of this solid (`a`) and the edited
+    /// one (`b`), with the edited parts' new shapes; `None` when nothing changes.
+    fn edited_overlap(&self, edits: &[Edit]) -> Option<(Overlap, Vec<NewShape>)> {
         let mut region = Aabb::empty();
-        let mut replaced: Vec<(usize, Option<Shape>)> = Vec::new();
+        let mut replaced: Vec<NewShape> = Vec::new();
         for (i, new) in edits {
             let Some(old) = self.parts.get(*i) else {
                 continue;
@@ -297,22 +334,19 @@ impl Prepared {
             replaced.push((*i, shape));
         }
         if region.is_empty() {
-            return 1.0;
+            return None;
+        }
+        let mut edited: Vec<Option<usize>> = vec![None; self.parts.len()];
+        for (k, (i, _)) in replaced.iter().enumerate() {
+            edited[*i] = Some(k);
         }
         let near = |i: usize| self.boxes[i].intersects(&region);
         let before = self.local_solid(&|i| near(i).then(|| self.shapes[i].clone()).flatten());
-        let after = self.local_solid(&|i| match replaced.iter().find(|(j, _)| *j == i) {
-            Some((_, s)) => s.clone(),
+        let after = self.local_solid(&|i| match edited[i] {
+            Some(k) => replaced[k].1.clone(),
             None => near(i).then(|| self.shapes[i].clone()).flatten(),
         });
-        let local = integrate_pair(&before, &after, Some(region));
-        let outside = (self.volume - local.a).max(0.0);
-        let union = outside + local.union;
-        if union > 0.0 {
-            ((outside + local.inter) / union).clamp(0.0, 1.0)
-        } else {
-            1.0
-        }
+        Some((integrate_pair(&before, &after, Some(region)), replaced))
     }
 
     /// The solid of the tree over the shapes `shape_of` gives (absent ones are empty).

@@ -419,5 +419,9 @@ fn edited_iou_equals_the_whole_models_iou() {
         let pruned = crate::compile::csg_without(&tree, &removed).unwrap();
         let whole = iou((&parts, &tree), (&after, &pruned));
         assert_close(prepared.iou_edited(&edit), whole, 1e-9);
+        // Applying the edit updates the volume by the same local integral.
+        let mut applied = prepared.clone();
+        applied.apply(&edit);
+        assert_close(applied.volume(), volume(&after, &pruned), 1e-9);
     }
 }
