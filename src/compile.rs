@@ -43,13 +43,22 @@ pub struct VolumeSimilarity<'m> {
     model: &'m Model,
     /// For each slot, the parts whose geometry depends on it.
     slot_parts: Vec<Vec<usize>>,
+    /// Each part's own volume in the input.
+    part_volumes: Vec<f64>,
 }
 
 impl<'m> VolumeSimilarity<'m> {
     pub fn new(model: &'m Model) -> VolumeSimilarity<'m> {
+        let part_volumes = model
+            .parts_at(&model.slot_values())
+            .unwrap_or_default()
+            .into_iter()
+            .map(|p| crate::geom::volume(&[p], &CsgNode::Part(0)))
+            .collect();
         VolumeSimilarity {
             model,
             slot_parts: slot_parts(model),
+            part_volumes,
         }
     }
 
@@ -139,8 +148,16 @@ impl Similarity for VolumeSimilarity<'_> {
         }
     }
 
-    fn removal(&self, r: &VolumeReference, part: usize) -> f64 {
-        r.solid.iou_edited(&[(part, None)])
+    fn removal_loss(&self, r: &VolumeReference, part: usize) -> f64 {
+        let changed = r.solid.changed_volume(&[(part, None)]);
+        let own = self.part_volumes.get(part).copied().unwrap_or(0.0);
+        if changed <= 0.0 {
+            0.0
+        } else if own > 0.0 {
+            changed / own
+        } else {
+            f64::INFINITY
+        }
     }
 }
 

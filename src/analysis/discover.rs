@@ -43,8 +43,10 @@ pub trait Similarity: Sync {
     }
     /// Moves the reference to `a`, which differs from its point only in the `changed` slots.
     fn update_reference(&self, reference: &mut Self::Reference, a: &[f64], changed: &[u32]);
-    /// Between the reference (prepared with no part skipped) and it without `part`.
-    fn removal(&self, reference: &Self::Reference, part: usize) -> f64;
+    /// How much removing `part` changes the reference (prepared with no part skipped),
+    /// relative to the part's own size in the input: 0 when nothing changes (the part is
+    /// hidden inside others, or shrunk to nothing), about 1 when all of it shows.
+    fn removal_loss(&self, reference: &Self::Reference, part: usize) -> f64;
 }
 
 /// One variation as discovery sees it: its slot values and the parts it does without.

@@ -295,6 +295,12 @@ impl Prepared {
         }
     }
 
+    /// The volume of the symmetric difference between this solid and the edited one.
+    pub fn changed_volume(&self, edits: &[Edit]) -> f64 {
+        self.edited_overlap(edits)
+            .map_or(0.0, |(local, _)| (local.union - local.inter).max(0.0))
+    }
+
     /// Applies `edits` to this solid, updating its volume by the same local integral.
     pub fn apply(&mut self, edits: &[Edit]) {
         let Some((local, replaced)) = self.edited_overlap(edits) else {
