@@ -108,11 +108,20 @@ pub struct Solid {
 
 impl Solid {
     pub fn new(parts: &[Part], csg: &CsgNode) -> Solid {
+        Solid::from_shapes(parts.len(), csg, &|i| Shape::new(&parts[i]))
+    }
+
+    /// The solid of `csg` over `count` parts whose shapes `shape_of` gives (absent: empty).
+    fn from_shapes(
+        count: usize,
+        csg: &CsgNode,
+        shape_of: &dyn Fn(usize) -> Option<Shape>,
+    ) -> Solid {
         let mut shapes = Vec::new();
-        let mut index = vec![None; parts.len()];
-        for (i, p) in parts.iter().enumerate() {
-            if let Some(s) = Shape::new(p) {
-                index[i] = Some(shapes.len() as u32);
+        let mut index = vec![None; count];
+        for (i, slot) in index.iter_mut().enumerate() {
+            if let Some(s) = shape_of(i) {
+                *slot = Some(shapes.len() as u32);
                 shapes.push(s);
             }
         }
@@ -357,22 +366,7 @@ impl Prepared {
 
     /// The solid of the tree over the shapes `shape_of` gives (absent ones are empty).
     fn local_solid(&self, shape_of: &dyn Fn(usize) -> Option<Shape>) -> Solid {
-        let mut shapes = Vec::new();
-        let mut index = vec![None; self.parts.len()];
-        for (i, slot) in index.iter_mut().enumerate() {
-            if let Some(s) = shape_of(i) {
-                *slot = Some(shapes.len() as u32);
-                shapes.push(s);
-            }
-        }
-        let program = Program::from_csg(&self.csg, &|i| index.get(i).copied().flatten());
-        let mut solid = Solid {
-            shapes,
-            program,
-            size: 0.0,
-        };
-        solid.size = solid.bounds().size();
-        solid
+        Solid::from_shapes(self.parts.len(), &self.csg, shape_of)
     }
 }
 
