@@ -10,19 +10,40 @@
 mod quality;
 
 use reparamc::fit::FitOptions;
-use reparamc::fit::optimize::Optimizer;
 use std::fmt::Write;
 
-/// The settings of the table: Adam (the paper's SGD needs many more rounds on targets this
-/// far from the base), the paper's loss, 10 rounds of 30 iterations, the first half in the
-/// structural subspace.
-pub fn options() -> FitOptions {
-    FitOptions {
-        optimizer: Optimizer::adam(),
-        lr: 0.01,
-        rounds: 10,
-        ..FitOptions::default()
+/// `options()` with overrides from the environment, for experiments.
+fn options_from_env() -> FitOptions {
+    let mut o = quality::table_options();
+    let get = |k: &str| std::env::var(k).ok().and_then(|v| v.parse::<f64>().ok());
+    if let Some(v) = get("FIT_SHADING") {
+        o.loss.shading = v;
     }
+    if let Some(v) = get("FIT_LAMBDA") {
+        o.lambda = v;
+    }
+    if let Some(v) = get("FIT_POLISH") {
+        o.polish = v as usize;
+    }
+    if let Some(v) = get("FIT_ROUNDS") {
+        o.rounds = v as usize;
+    }
+    if let Some(v) = get("FIT_LEVELS") {
+        o.levels = v as u32;
+    }
+    if let Some(v) = get("FIT_SIGMA_END") {
+        o.sigma.1 = v;
+    }
+    if let Some(v) = get("FIT_ALBEDO") {
+        o.per_item_albedo = v != 0.0;
+    }
+    if let Some(v) = get("FIT_PROPORTIONS") {
+        o.proportions = v != 0.0;
+    }
+    if let Some(v) = get("FIT_RELATIVE") {
+        o.relative_steps = v != 0.0;
+    }
+    o
 }
 
 fn main() {
@@ -50,7 +71,7 @@ fn main() {
     if std::env::var("FIT_QUALITY_GPU").is_ok() {
         backend = Box::new(reparamc::render::gpu::GpuBackend::new().expect("a wgpu adapter"));
     }
-    let opts = options();
+    let opts = options_from_env();
     let mut rows = Vec::new();
     let mut md = String::new();
     let _ = writeln!(

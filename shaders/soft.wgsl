@@ -47,7 +47,7 @@ struct Part {
 struct Item {
     a: vec4<u32>,        // program offset, program length, parts offset, parts count
     b: vec4<u32>,        // split difference: first operand's program length (0: none),
-                         // subtracted parts offset, count
+                         // subtracted parts offset, count; the item's albedo (f32 bits)
 }
 
 struct Entry {
@@ -1007,6 +1007,7 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups) 
         }
         let item = items[it];
         let ia = item.a;
+        let albedo = bitcast<f32>(item.b.w);
         if (s_count + ia.w > MAXS || l_count >= MAXL) {
             continue;
         }
@@ -1060,7 +1061,7 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups) 
                 continue;
             }
             if (!fr.ok) {
-                push_layer(fb_depth, alpha_a, alpha_a * shade_of(v, fb_n), 1.0, it, first, end);
+                push_layer(fb_depth, alpha_a, alpha_a * albedo * shade_of(v, fb_n), 1.0, it, first, end);
                 continue;
             }
             let pa = o + fr.t * d;
@@ -1122,13 +1123,13 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups) 
                     deep_k = ks;
                 }
             }
-            let sh_front = shade_of(v, fr.n);
+            let sh_front = albedo * shade_of(v, fr.n);
             var cavity = 1.0;
             var sh_cav = sh_front;
             if (kappa < 1.0 && deep_k != NONE && s_hit[deep_k] && s_t1[deep_k] > fr.t) {
                 let c = first_solid_from(ia, first, end, s_t1[deep_k]);
                 if (c.ok) {
-                    sh_cav = shade_of(v, c.n);
+                    sh_cav = albedo * shade_of(v, c.n);
                 } else {
                     cavity = 0.0;
                     sh_cav = 0.0;
@@ -1184,7 +1185,7 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(num_workgroups) 
             depth = vis.t;
             nw = vis.n;
         }
-        push_layer(depth, alpha, alpha * shade_of(v, nw), keep, it, first, end);
+        push_layer(depth, alpha, alpha * albedo * shade_of(v, nw), keep, it, first, end);
     }
     // Sort layers front to back (by index).
     for (var i = 0u; i < l_count; i = i + 1u) {

@@ -1,5 +1,6 @@
 //! The wgpu backend computes what the CPU backend computes: the same pictures (≥ 99.5% of
-//! pixels), the same loss (within 1e-3 relative), and the same gradient direction.
+//! pixels), the same loss (within 1e-3 relative), and the same gradient direction, with
+//! items of different albedos.
 
 #![cfg(feature = "gpu")]
 
@@ -44,7 +45,10 @@ fn cpu_and_wgpu_agree() {
         let p = Parametric::new(&m);
         let (lo, hi) = m.bounds().unwrap();
         let cams = default_views(lo, hi, 3, 96, 80);
-        let scene = p.scene(&p.x0);
+        let albedo: Vec<f64> = (0..m.parts.len())
+            .map(|i| 0.6 + 0.15 * (i % 4) as f64)
+            .collect();
+        let scene = p.scene(&p.x0).with_albedo(&albedo);
         let shades = vec![DEFAULT_SHADE; cams.len()];
         // Pictures, hard and soft.
         for sigma in [None, Some(0.7)] {

@@ -57,7 +57,7 @@ pub struct Args {
     #[arg(long, default_value_t = 0.0)]
     momentum: f64,
     /// Edge softness in pixels, first and last round: `START,END`.
-    #[arg(long, default_value = "2,0.5")]
+    #[arg(long, default_value = "2,0.25")]
     sigma: String,
     /// The `0.2` of `sharpen(I) = I − 0.2·blur(I)`.
     #[arg(long, default_value_t = 0.2)]
@@ -80,6 +80,14 @@ pub struct Args {
     /// faces hidden behind other parts).
     #[arg(long, default_value_t = 0)]
     polish: usize,
+    /// Skip the opening search over the model's stretch along each axis (it brings a
+    /// model that is far from the pictures' proportions within reach of the gradients).
+    #[arg(long)]
+    no_proportions: bool,
+    /// Fit one grey per surface for shading instead of a brightness per part (parts of
+    /// other colours in the pictures then read as shading).
+    #[arg(long)]
+    one_colour: bool,
     /// Shrink target pictures so their longer side is at most this many pixels.
     #[arg(long)]
     max_size: Option<u32>,
@@ -219,6 +227,8 @@ pub fn run(args: Args) -> ExitCode {
         levels: args.levels,
         relative_steps: args.relative_steps,
         polish: args.polish,
+        proportions: !args.no_proportions,
+        per_item_albedo: !args.one_colour,
         ..FitOptions::default()
     };
     let stages: Vec<Stage> = if args.subspace {
@@ -310,7 +320,8 @@ pub fn run(args: Args) -> ExitCode {
         let mut cells: Vec<Rgb> = Vec::new();
         for (cam, img) in set.cameras.iter().zip(&set.images) {
             for x in [&result.x0, &result.x] {
-                let scene = problem.scene(x);
+                // With the fitted albedos, parts show the targets' light and dark.
+                let scene = problem.scene(x).with_albedo(&result.albedo);
                 let v = prepare_view(&scene, cam, Some(super::render::EDGE_SOFTNESS));
                 let r = backend.render(
                     &scene,

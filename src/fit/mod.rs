@@ -1,27 +1,38 @@
 //! Fitting a model's numbers to pictures: the paper's image loss minimised over slots (or
 //! inside a constraint subspace) with gradients from soft silhouettes.
 //!
-//! A fit runs in *rounds* of `iterations` optimiser steps (the paper: SGD, learning rate
-//! 0.05, 30 iterations). At the start of each round the shading of every view is matched to
-//! its target (least squares on the pixels both show as surface) and the silhouettes'
-//! softness `σ` steps down geometrically from `sigma.0` to `sigma.1` pixels, so early rounds
-//! see far and later rounds see sharp.
+//! A fit opens with a search over the model's stretch along each axis ([`proportions`]),
+//! then runs its stages ([`stages`]) in *rounds* of `iterations` optimiser steps (the
+//! paper: SGD, learning rate 0.05, 30 iterations). At the start of each round the shading
+//! of every view and the albedo of every item are matched to the targets ([`albedo`]: least
+//! squares on the pixels both show as surface) and the silhouettes' softness `σ` steps down
+//! geometrically from `sigma.0` to `sigma.1` pixels, so early rounds see far and later
+//! rounds see sharp.
 
+pub mod albedo;
 pub mod loss;
 pub mod optimize;
+pub mod polish;
+pub mod proportions;
+pub mod stages;
 pub mod targets;
 
+pub use polish::polish;
+pub use stages::{
+    Stage, basis_of, constraint_basis, scale_basis, staged, staged_with, structure_basis,
+};
+
 use crate::ir::{Affine, Model};
+use crate::render::Backend;
 use crate::render::camera::Camera;
 use crate::render::scene::DEFAULT_SHADE as DEFAULT_SHADE_PRIOR;
 use crate::render::scene::{Kind, NSHADE, NTHETA, PartGeom, Scene, theta_at, theta_forms};
 use crate::render::soft::{ViewPrep, prepare_view};
-use crate::render::{Backend, fit_shade};
 use loss::{LossSpec, Target};
-use nalgebra::DMatrix;
 use optimize::{OptState, Optimizer, Space};
 
-/// Settings of a fit; [`FitOptions::default`] is the paper's schedule.
+/// Settings of a fit; [`FitOptions::default`] is the paper's loss and schedule, opened by our
+/// proportions search and with an albedo per item (both can be turned off).
 #[derive(Debug, Clone, PartialEq)]
 pub struct FitOptions {
     pub lr: f64,
@@ -37,9 +48,14 @@ pub struct FitOptions {
     pub max_step: f64,
     /// Match each view's shading to its target at the start of every round.
     pub fit_shading: bool,
+    /// With `fit_shading`: fit an albedo per item too, so parts of other colours in the
+    /// targets (black tyres, two woods) do not read as shading (see [`albedo`]).
+    pub per_item_albedo: bool,
     /// Step each slot in units of its own magnitude (at least 5% of the model's size)
     /// instead of the model's size.
     pub relative_steps: bool,
+    /// Open with a search over the model's stretch along each axis (see [`proportions`]).
+    pub proportions: bool,
     /// Sweeps of face moves after the gradient rounds (see [`polish`]); 0: none.
     pub polish: usize,
     /// Smallest world extent of a part, in units of the model's size.
@@ -62,13 +78,15 @@ impl Default for FitOptions {
             rounds: 10,
             lambda: 0.001,
             optimizer: Optimizer::sgd(),
-            sigma: (2.0, 0.5),
+            sigma: (2.0, 0.25),
             loss: LossSpec::default(),
             max_step: 0.02,
             fit_shading: true,
+            per_item_albedo: true,
             min_extent: 0.002,
             relative_steps: false,
             polish: 0,
+            proportions: true,
             levels: 0,
             pooled: true,
         }
@@ -296,6 +314,15 @@ pub struct FitResult {
     pub start_loss: Vec<f64>,
     pub end_loss: Vec<f64>,
     pub shades: Vec<[f64; NSHADE]>,
+    /// Per scene item: the albedo fitted last (empty without shading fits).
+    pub albedo: Vec<f64>,
+}
+
+/// How the pictures are lit and coloured, refitted each round: each view's shading
+/// coefficients and each item's albedo.
+struct Look {
+    shades: Vec<[f64; NSHADE]>,
+    albedo: Vec<f64>,
 }
 
 /// Progress report, once per step.
@@ -378,129 +405,6 @@ fn project_guards(guards: &[(Affine, f64)], space: &Space, y: &mut [f64]) {
     }
 }
 
-/// Face moves: for each part and each of its faces, try moving that face alone (the
-/// smallest change of slots that moves it and keeps the part's other faces) by 3% to 50% of
-/// the part's extent either way; keep a move when the loss drops. Gradients only see edges
-/// that are visible; this reaches faces hidden behind other parts (a shelf grown up into a
-/// table top) and sizes the loss barely sees. `sweeps` passes, or until nothing improves.
-pub fn polish(
-    problem: &Parametric,
-    mut x: Vec<f64>,
-    sweeps: usize,
-    loss: &mut dyn FnMut(&[f64]) -> f64,
-    ok: &dyn Fn(&[f64]) -> bool,
-) -> Vec<f64> {
-    let d = x.len();
-    let mut best = loss(&x);
-    for _ in 0..sweeps {
-        let mut improved = false;
-        for faces in &problem.faces {
-            if faces.len() < 2 {
-                continue;
-            }
-            let rows: Vec<&Affine> = faces.iter().map(|f| &f.2).collect();
-            let a = crate::analysis::linalg::matrix(&rows, d);
-            if a.iter().all(|v| *v == 0.0) {
-                continue;
-            }
-            let pinv = crate::analysis::linalg::pinv(&a);
-            for (j, &(axis, _, ref form)) in faces.iter().enumerate() {
-                let along: Vec<f64> = faces
-                    .iter()
-                    .filter(|f| f.0 == axis)
-                    .map(|f| f.2.eval(&x))
-                    .collect();
-                let extent = along.iter().fold(f64::NEG_INFINITY, |m, v| m.max(*v))
-                    - along.iter().fold(f64::INFINITY, |m, v| m.min(*v));
-                if extent.is_nan() || extent <= 0.0 || form.is_constant() {
-                    continue;
-                }
-                for frac in [-0.5, -0.25, -0.1, -0.03, 0.03, 0.1, 0.25, 0.5] {
-                    let mut b = nalgebra::DVector::zeros(faces.len());
-                    b[j] = frac * extent;
-                    let dx = &pinv * b;
-                    let cand: Vec<f64> = x.iter().zip(dx.iter()).map(|(a, b)| a + b).collect();
-                    // The move must actually move that face.
-                    if (form.eval(&cand) - form.eval(&x) - frac * extent).abs() > 1e-6 * extent {
-                        continue;
-                    }
-                    if !ok(&cand) {
-                        continue;
-                    }
-                    let l = loss(&cand);
-                    if l < best {
-                        best = l;
-                        x = cand;
-                        improved = true;
-                        break;
-                    }
-                }
-            }
-        }
-        if !improved {
-            break;
-        }
-    }
-    x
-}
-
-/// One stage of a fit: where it moves and for how many rounds. Each stage starts where the
-/// previous one ended.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Stage {
-    /// A basis `N` (d × d′) of the directions to move in; `None`: every slot.
-    pub basis: Option<DMatrix<f64>>,
-    pub rounds: usize,
-}
-
-impl Stage {
-    pub fn slots(rounds: usize) -> Stage {
-        Stage {
-            basis: None,
-            rounds,
-        }
-    }
-}
-
-/// The default schedule: the first `warm` rounds inside the structural subspace (the
-/// relations that hold a design together; parts move with what they touch), the rest in
-/// slot space.
-pub fn staged(model: &Model, rounds: usize, warm: usize) -> Vec<Stage> {
-    let warm = warm.min(rounds);
-    let mut stages = Vec::new();
-    if warm > 0 {
-        stages.push(Stage {
-            basis: Some(structure_basis(model)),
-            rounds: warm,
-        });
-    }
-    if rounds > warm {
-        stages.push(Stage::slots(rounds - warm));
-    }
-    stages
-}
-
-/// Null-space basis of constraint rows over `d` slots.
-pub fn basis_of(rows: &[&Affine], d: usize) -> DMatrix<f64> {
-    let c = crate::analysis::linalg::matrix(rows, d);
-    optimize::null_space(&c)
-}
-
-/// The subspace of every relation that holds on the model (its base constraints).
-pub fn constraint_basis(model: &Model) -> DMatrix<f64> {
-    let c = crate::analysis::find_candidates(model);
-    let rows: Vec<&Affine> = c.list.iter().flat_map(|k| k.rows.iter()).collect();
-    basis_of(&rows, model.slots.len())
-}
-
-/// The subspace of the structural prior: contacts, coaxiality, repeated parts' sizes.
-pub fn structure_basis(model: &Model) -> DMatrix<f64> {
-    let c = crate::analysis::find_candidates(model);
-    let keep = crate::analysis::prior::structural_prior(model, &c);
-    let rows: Vec<&Affine> = keep.iter().flat_map(|&i| c.list[i].rows.iter()).collect();
-    basis_of(&rows, model.slots.len())
-}
-
 /// Fits slot values so renders from `cameras` match `targets`, stage after stage.
 pub fn fit(
     problem: &Parametric,
@@ -531,7 +435,10 @@ pub fn fit(
     // Parts that start out drawable must stay so.
     let drawable: Vec<bool> = problem.geoms(&problem.x0).iter().map(|g| g.valid).collect();
     let guards = problem.guards(opts.min_extent * problem.scale);
-    let mut shades = vec![DEFAULT_SHADE_PRIOR; cameras.len()];
+    let mut look = Look {
+        shades: vec![DEFAULT_SHADE_PRIOR; cameras.len()],
+        albedo: Vec::new(),
+    };
     let rounds: usize = stages.iter().map(|s| s.rounds).sum::<usize>().max(1);
     let total_steps = rounds * opts.iterations;
     let mut curve = Vec::with_capacity(total_steps);
@@ -553,15 +460,18 @@ pub fn fit(
     {
         max_level += 1;
     }
-    let mut pyramid: Vec<(Vec<Camera>, Vec<Target>)> = vec![(cameras.to_vec(), targets.to_vec())];
+    // Each level's cameras and targets.
+    let mut cams_at: Vec<Vec<Camera>> = vec![cameras.to_vec()];
     for k in 1..=max_level as usize {
-        let (cams, tgts) = &pyramid[k - 1];
-        let next = (
-            cams.iter()
-                .map(|c| c.with_size(c.width / 2, c.height / 2))
-                .collect(),
-            tgts.iter().map(Target::pooled).collect(),
-        );
+        let next = cams_at[k - 1]
+            .iter()
+            .map(|c| c.with_size(c.width / 2, c.height / 2))
+            .collect();
+        cams_at.push(next);
+    }
+    let mut pyramid: Vec<Vec<Target>> = vec![targets.to_vec()];
+    for k in 1..=max_level as usize {
+        let next = pyramid[k - 1].iter().map(Target::pooled).collect();
         pyramid.push(next);
     }
     let level_at = |r: usize| -> usize {
@@ -577,7 +487,7 @@ pub fn fit(
                       level: usize,
                       x: &[f64],
                       sigma: f64,
-                      shades: &[[f64; NSHADE]],
+                      look: &Look,
                       grad: bool| {
         // Pooled levels render at full size and compare pooled residuals.
         let (render_level, pool) = if opts.pooled {
@@ -585,8 +495,8 @@ pub fn fit(
         } else {
             (level, 0)
         };
-        let (cams, tgts) = &pyramid[render_level];
-        let scene = problem.scene(x);
+        let (cams, tgts) = (&cams_at[render_level], &pyramid[render_level]);
+        let scene = problem.scene(x).with_albedo(&look.albedo);
         let views: Vec<ViewPrep> = cams
             .iter()
             .map(|c| prepare_view(&scene, c, Some(sigma)))
@@ -595,23 +505,29 @@ pub fn fit(
             level: opts.loss.level + pool,
             ..opts.loss
         };
-        backend.loss(&scene, &views, sigma, shades, tgts, &spec, grad)
+        backend.loss(&scene, &views, sigma, &look.shades, tgts, &spec, grad)
     };
-    let refit_shades =
-        |backend: &mut dyn Backend, level: usize, x: &[f64], shades: &mut Vec<[f64; NSHADE]>| {
-            if !opts.fit_shading {
-                return;
-            }
-            let (cams, tgts) = &pyramid[level];
-            let scene = problem.scene(x);
-            let views: Vec<ViewPrep> = cams.iter().map(|c| prepare_view(&scene, c, None)).collect();
-            let hard = backend.render(&scene, &views, None, shades);
-            for ((sh, (_, h)), t) in shades.iter_mut().zip(&hard).zip(tgts) {
-                *sh = fit_shade(h, t, DEFAULT_SHADE_PRIOR);
-            }
-        };
-    refit_shades(backend, 0, &problem.x0, &mut shades);
-    let start_loss = image_loss(backend, 0, &problem.x0, opts.sigma.1, &shades, false).per_view;
+    // Shading and albedos are fitted at full size, on the hard surface.
+    let refit_shades = |backend: &mut dyn Backend, x: &[f64], look: &mut Look| {
+        if !opts.fit_shading {
+            return;
+        }
+        let scene = problem.scene(x);
+        let views: Vec<ViewPrep> = cameras
+            .iter()
+            .map(|c| prepare_view(&scene, c, None))
+            .collect();
+        let hard: Vec<_> = backend
+            .render(&scene, &views, None, &look.shades)
+            .into_iter()
+            .map(|(_, h)| h)
+            .collect();
+        let fitted = albedo::fit_shading(&hard, targets, DEFAULT_SHADE_PRIOR, opts.per_item_albedo);
+        look.shades = fitted.shades;
+        look.albedo = fitted.albedo;
+    };
+    refit_shades(backend, &problem.x0, &mut look);
+    let start_loss = image_loss(backend, 0, &problem.x0, opts.sigma.1, &look, false).per_view;
     let reg = |x: &[f64]| -> (f64, Vec<f64>) {
         let mut v = 0.0;
         let mut g = vec![0.0; x.len()];
@@ -635,7 +551,46 @@ pub fn fit(
             }
         })
         .collect();
+    let valid = |x: &[f64]| {
+        x.iter().all(|v| v.is_finite())
+            && guards.iter().all(|(f, min)| f.eval(x) >= *min)
+            && problem
+                .geoms(x)
+                .iter()
+                .zip(&drawable)
+                .all(|(g, &was)| g.valid || !was)
+    };
     let mut x = problem.x0.clone();
+    if opts.proportions {
+        // Compared coarsely (pooled twice, the first round's softness) so that far edges
+        // still count.
+        let spec = LossSpec {
+            level: opts.loss.level + 2,
+            ..opts.loss
+        };
+        let sigma = opts.sigma.0;
+        let weights = stages::axis_weights(&problem.base, d);
+        let mut coarse = |x: &[f64]| {
+            let scene = problem.scene(x).with_albedo(&look.albedo);
+            let views: Vec<ViewPrep> = cameras
+                .iter()
+                .map(|c| prepare_view(&scene, c, Some(sigma)))
+                .collect();
+            backend
+                .loss(
+                    &scene,
+                    &views,
+                    sigma,
+                    &look.shades,
+                    &pyramid[0],
+                    &spec,
+                    false,
+                )
+                .total()
+        };
+        x = proportions::search(x, &weights, &mut coarse, &valid);
+        refit_shades(backend, &x, &mut look);
+    }
     let mut round = 0;
     for stage in stages {
         let space = match &stage.basis {
@@ -648,15 +603,10 @@ pub fn fit(
         for _ in 0..stage.rounds {
             let sigma = sigma_at(round);
             let level = level_at(round);
-            refit_shades(
-                backend,
-                if opts.pooled { 0 } else { level },
-                &space.x(&y),
-                &mut shades,
-            );
+            refit_shades(backend, &space.x(&y), &mut look);
             for it in 0..opts.iterations {
                 let xs = space.x(&y);
-                let out = image_loss(backend, level, &xs, sigma, &shades, true);
+                let out = image_loss(backend, level, &xs, sigma, &look, true);
                 let (rv, rg) = reg(&xs);
                 let mut gx = problem.chain(&out.dtheta);
                 for (g, r) in gx.iter_mut().zip(&rg) {
@@ -707,30 +657,22 @@ pub fn fit(
         }
         x = space.x(&y);
     }
-    refit_shades(backend, 0, &x, &mut shades);
+    refit_shades(backend, &x, &mut look);
     if opts.polish > 0 {
         let eval = |backend: &mut dyn Backend, x: &[f64]| -> f64 {
-            image_loss(backend, 0, x, opts.sigma.1, &shades, false).total() + reg(x).0
+            image_loss(backend, 0, x, opts.sigma.1, &look, false).total() + reg(x).0
         };
-        let ok = |x: &[f64]| {
-            x.iter().all(|v| v.is_finite())
-                && guards.iter().all(|(f, min)| f.eval(x) >= *min)
-                && problem
-                    .geoms(x)
-                    .iter()
-                    .zip(&drawable)
-                    .all(|(g, &was)| g.valid || !was)
-        };
-        x = polish(problem, x, opts.polish, &mut |x| eval(backend, x), &ok);
-        refit_shades(backend, 0, &x, &mut shades);
+        x = polish(problem, x, opts.polish, &mut |x| eval(backend, x), &valid);
+        refit_shades(backend, &x, &mut look);
     }
-    let end_loss = image_loss(backend, 0, &x, opts.sigma.1, &shades, false).per_view;
+    let end_loss = image_loss(backend, 0, &x, opts.sigma.1, &look, false).per_view;
     Ok(FitResult {
         x0: problem.x0.clone(),
         x,
         curve,
         start_loss,
         end_loss,
-        shades,
+        shades: look.shades,
+        albedo: look.albedo,
     })
 }

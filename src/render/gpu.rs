@@ -318,13 +318,14 @@ impl GpuBackend {
         for (it, (start, len)) in scene.items.iter().zip(progs) {
             let pstart = code.len() as u32;
             code.extend(it.parts.iter().map(|&p| p as u32));
+            let albedo = (scene.albedo_of(items.len()) as f32).to_bits();
             let b = match &it.split {
                 Some((k, negs)) => {
                     let nstart = code.len() as u32;
                     code.extend(negs.iter().map(|&p| p as u32));
-                    [*k as u32, nstart, negs.len() as u32, 0]
+                    [*k as u32, nstart, negs.len() as u32, albedo]
                 }
-                None => [0; 4],
+                None => [0, 0, 0, albedo],
             };
             items.push(GItem {
                 a: [start, len, pstart, it.parts.len() as u32],

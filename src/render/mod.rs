@@ -129,14 +129,15 @@ pub fn fit_shade(hard: &HardImage, target: &Target, prior: [f64; NSHADE]) -> [f6
     let mut count = 0usize;
     let mut grey_sum = 0.0;
     for i in 0..hard.item.len() {
-        if hard.item[i] < 0 || target.m[i] < 0.99 {
+        let w = f64::from(target.shade_weight_at(i));
+        if hard.item[i] < 0 || target.m[i] < 0.99 || w <= 0.0 {
             continue;
         }
         let n = hard.normal[i].map(|v| v as f64);
         let f = nalgebra::SVector::<f64, NSHADE>::from(shade_features(n));
         let g = target.grey[i] as f64;
-        a += f * f.transpose();
-        b += f * g;
+        a += w * f * f.transpose();
+        b += w * f * g;
         grey_sum += g;
         count += 1;
     }

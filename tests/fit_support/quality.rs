@@ -6,12 +6,33 @@
 #![allow(dead_code)]
 
 use reparamc::fit::loss::Target;
+use reparamc::fit::optimize::Optimizer;
 use reparamc::fit::{FitOptions, Parametric, fit};
 use reparamc::render::camera::{Camera, default_views};
 use reparamc::render::openscad::{self, OpenScadRender};
 use reparamc::render::{Backend, CpuBackend};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
+
+/// The settings of the quality table: Adam (the paper's SGD needs many more rounds on
+/// targets this far from the base), the paper's loss, 10 rounds of 30 iterations, the
+/// first half in the structural subspace.
+pub fn table_options() -> FitOptions {
+    FitOptions {
+        optimizer: Optimizer::adam(),
+        lr: 0.01,
+        rounds: 10,
+        ..FitOptions::default()
+    }
+}
+
+/// The case `model/variant`.
+pub fn case(model: &str, variant: &str) -> Case {
+    cases()
+        .into_iter()
+        .find(|c| c.model == model && c.variant == variant)
+        .unwrap_or_else(|| panic!("no case {model}/{variant}"))
+}
 
 pub fn repo() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
@@ -153,7 +174,18 @@ pub fn run_case(
     let warm = std::env::var("WARM")
         .ok()
         .map_or(opts.rounds / 2, |w| w.parse().unwrap());
-    let stages = reparamc::fit::staged(&base, opts.rounds, warm);
+    let stages = match std::env::var("SCALE")
+        .ok()
+        .and_then(|v| v.parse::<usize>().ok())
+    {
+        Some(scale) => reparamc::fit::staged_with(
+            &base,
+            scale,
+            warm.saturating_sub(scale),
+            opts.rounds - warm.min(opts.rounds),
+        ),
+        None => reparamc::fit::staged(&base, opts.rounds, warm),
+    };
     let t0 = Instant::now();
     let result = fit(
         &problem,

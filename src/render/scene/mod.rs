@@ -427,15 +427,36 @@ pub fn theta_at(p: &Part, forms: &[Option<Affine>; NTHETA], x: &[f64]) -> [f64; 
 pub struct Scene {
     pub parts: Vec<PartGeom>,
     pub items: Vec<Item>,
+    /// Per item: the brightness of its material, multiplying its shade (1 for every item
+    /// unless set; see [`Scene::with_albedo`]).
+    pub albedo: Vec<f64>,
 }
 
 impl Scene {
     pub fn new(parts: Vec<PartGeom>, csg: &CsgNode) -> Scene {
-        let items = items_of(csg)
+        let items: Vec<Item> = items_of(csg)
             .into_iter()
             .filter(|it| it.parts.iter().all(|&p| p < parts.len()))
             .collect();
-        Scene { parts, items }
+        let albedo = vec![1.0; items.len()];
+        Scene {
+            parts,
+            items,
+            albedo,
+        }
+    }
+
+    /// The scene with each item's albedo (items beyond `albedo` keep 1).
+    pub fn with_albedo(mut self, albedo: &[f64]) -> Scene {
+        for (a, &b) in self.albedo.iter_mut().zip(albedo) {
+            *a = b;
+        }
+        self
+    }
+
+    /// Item `i`'s albedo.
+    pub fn albedo_of(&self, i: usize) -> f64 {
+        self.albedo.get(i).copied().unwrap_or(1.0)
     }
 
     pub fn from_parts(parts: &[Part], csg: &CsgNode) -> Scene {

@@ -137,14 +137,16 @@ impl PixelCtx<'_> {
         st
     }
 
-    fn shade_of(&self, n_world: Vec3) -> (f64, Vec3) {
+    /// Shade of item `item`'s surface with world normal `n_world`: the view's shading
+    /// times the item's albedo.
+    fn shade_of(&self, item: usize, n_world: Vec3) -> f64 {
         let n = self.prep.frame.to_eye(n_world);
         let f = shade_features(n);
         let mut v = 0.0;
         for k in 0..NSHADE {
             v += self.shade[k] * f[k];
         }
-        (v, n)
+        v * self.scene.albedo_of(item)
     }
 
     pub(super) fn pixel(
@@ -245,7 +247,7 @@ impl PixelCtx<'_> {
                 }
                 let Some((ta, na, ka)) = front else {
                     let (depth, n) = fallback();
-                    let sh = self.shade_of(n).0;
+                    let sh = self.shade_of(idx, n);
                     layers.push(Layer {
                         depth,
                         alpha: alpha_a,
@@ -305,7 +307,7 @@ impl PixelCtx<'_> {
                     }
                 }
                 let neg_range = (first_neg as u32, negs.len() as u32);
-                let sh_front = self.shade_of(na).0;
+                let sh_front = self.shade_of(idx, na);
                 // What the cut shows: the solid after leaving the deepest subtracted part
                 // (nothing for a hole through); outside every subtracted part, the front.
                 let (cavity, sh_cavity) = if kappa < 1.0 {
@@ -315,7 +317,7 @@ impl PixelCtx<'_> {
                         .filter(|h| h.t1 > ta);
                     match exit {
                         Some(h) => match first_solid_from(&item.program, st, h.t1) {
-                            Some((_, nc)) => (1.0, self.shade_of(nc).0),
+                            Some((_, nc)) => (1.0, self.shade_of(idx, nc)),
                             None => (0.0, 0.0),
                         },
                         None => (1.0, sh_front),
@@ -375,7 +377,7 @@ impl PixelCtx<'_> {
             layers.push(Layer {
                 depth,
                 alpha,
-                premult: alpha * self.shade_of(n_world).0,
+                premult: alpha * self.shade_of(idx, n_world),
                 keep,
                 ..plain
             });
