@@ -98,22 +98,34 @@ impl Backend for CpuBackend {
         spec: &LossSpec,
         grad: bool,
     ) -> LossOut {
+        use rayon::prelude::*;
+        // Views in parallel (each also renders its rows in parallel); summed in view order.
+        let outs: Vec<(f64, Vec<[f64; NTHETA]>)> = views
+            .par_iter()
+            .zip(shades.par_iter())
+            .zip(targets.par_iter())
+            .map(|((v, &sh), t)| {
+                let (img, _, entries) = soft::render_view(scene, v, Some(sigma), sh, grad);
+                let l = view_loss(&img, t, spec, grad);
+                let g = if grad {
+                    soft::theta_gradient(scene, v, &entries, &l.gm, &l.gs)
+                } else {
+                    Vec::new()
+                };
+                (l.loss, g)
+            })
+            .collect();
         let mut per_view = Vec::with_capacity(views.len());
         let mut dtheta = if grad {
             vec![[0.0; NTHETA]; scene.parts.len()]
         } else {
             Vec::new()
         };
-        for ((v, &sh), t) in views.iter().zip(shades).zip(targets) {
-            let (img, _, entries) = soft::render_view(scene, v, Some(sigma), sh, grad);
-            let l = view_loss(&img, t, spec, grad);
-            per_view.push(l.loss);
-            if grad {
-                let g = soft::theta_gradient(scene, v, &entries, &l.gm, &l.gs);
-                for (acc, gp) in dtheta.iter_mut().zip(g) {
-                    for k in 0..NTHETA {
-                        acc[k] += gp[k];
-                    }
+        for (loss, g) in outs {
+            per_view.push(loss);
+            for (acc, gp) in dtheta.iter_mut().zip(g) {
+                for k in 0..NTHETA {
+                    acc[k] += gp[k];
                 }
             }
         }
