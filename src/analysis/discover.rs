@@ -18,8 +18,10 @@
 
 use super::candidates::Candidates;
 use super::pool::Pool;
-use super::project::{Faces, Projector, SlotBlocks};
+use super::project::{Faces, Projector};
 use super::rowbasis::RowBasis;
+use super::slotblocks::SlotBlocks;
+use super::tolerance::RELATIVE_ROUNDOFF;
 use crate::ir::Affine;
 use std::collections::{HashMap, HashSet};
 
@@ -229,7 +231,11 @@ pub fn discover<S: Similarity>(
         .iter()
         .flat_map(|s| s.values.iter())
         .fold(1.0f64, |m, v| m.max(v.abs()));
-    let holds = candidates.tolerance.epsilon.max(1e-9 * scale);
+    let bounds = Bounds {
+        roundoff: RELATIVE_ROUNDOFF * scale,
+        holds: candidates.tolerance.epsilon.max(RELATIVE_ROUNDOFF * scale),
+    };
+    let holds = bounds.holds;
     // Per candidate, each variation's similarity after projecting onto it (1 when the
     // variation already satisfies it); the score is their product.
     // Scores of candidates away from what moved are kept (algorithms.md §3): an entry is
@@ -274,7 +280,7 @@ pub fn discover<S: Similarity>(
                 &mut vars,
                 &mut chosen,
                 sim,
-                (scale, holds),
+                bounds,
                 &mut cache,
             ) else {
                 break;
@@ -289,7 +295,7 @@ pub fn discover<S: Similarity>(
                 for (s, delta) in shift {
                     v.current[s as usize] += delta;
                     moved_any.insert(s);
-                    if delta.abs() > 1e-9 * scale {
+                    if delta.abs() > bounds.roundoff {
                         dirty.insert(s);
                         moved.push(s);
                     }
@@ -352,6 +358,14 @@ pub fn discover<S: Similarity>(
     out
 }
 
+/// What counts as no change (a move or residual below the round-off of the model's numbers)
+/// and as a relation holding (ε, at least the round-off).
+#[derive(Debug, Clone, Copy)]
+struct Bounds {
+    roundoff: f64,
+    holds: f64,
+}
+
 /// Scores the remaining candidates of `tier` (reusing cached scores) and returns the best:
 /// (score, candidate), the first in list order among equals. Similarities are at most 1, so
 /// the first candidate scoring 1 is the answer and the rest need no scoring.
@@ -364,7 +378,7 @@ fn best_candidate<S: Similarity>(
     vars: &mut [Variation<'_, S::Reference>],
     chosen: &mut Chosen,
     sim: &S,
-    (scale, holds): (f64, f64),
+    bounds: Bounds,
     cache: &mut [Option<Vec<f64>>],
 ) -> Option<(f64, usize)> {
     let mut best: Option<(f64, usize)> = None;
@@ -374,11 +388,11 @@ fn best_candidate<S: Similarity>(
     for c in pool.members(tier) {
         if cache[c].is_none() {
             let rows = rows_of(candidates, c);
-            let class = projection_class(&chosen.basis, &rows, vars, scale);
+            let class = projection_class(&chosen.basis, &rows, vars, bounds.roundoff);
             let sims = match class.as_ref().and_then(|k| by_class.get(k)) {
                 Some(sims) => sims.clone(),
                 None => {
-                    let sims = similarities(faces, vars, chosen, sim, (scale, holds), &rows);
+                    let sims = similarities(faces, vars, chosen, sim, bounds, &rows);
                     if let Some(k) = class {
                         by_class.insert(k, sims.clone());
                     }
@@ -404,9 +418,10 @@ fn similarities<S: Similarity>(
     vars: &mut [Variation<'_, S::Reference>],
     chosen: &mut Chosen,
     sim: &S,
-    (scale, holds): (f64, f64),
+    bounds: Bounds,
     rows: &[&Affine],
 ) -> Vec<f64> {
+    let Bounds { roundoff, holds } = bounds;
     let mut sims = Vec::with_capacity(vars.len());
     for v in vars.iter_mut() {
         if satisfied(rows, &v.current, holds) {
@@ -415,7 +430,7 @@ fn similarities<S: Similarity>(
         }
         let shift = shift_of(v, faces, chosen, rows);
         // A variation that already satisfies the candidate does not move.
-        if shift.iter().all(|(_, d)| d.abs() <= 1e-9 * scale) {
+        if shift.iter().all(|(_, d)| d.abs() <= roundoff) {
             sims.push(1.0);
             continue;
         }
@@ -424,7 +439,7 @@ fn similarities<S: Similarity>(
         // only parts with a slot moved beyond it are measured again.
         let changed: Vec<u32> = shift
             .iter()
-            .filter(|(_, d)| d.abs() > 1e-9 * scale)
+            .filter(|(_, d)| d.abs() > roundoff)
             .map(|&(s, _)| s)
             .collect();
         for (s, d) in shift {
@@ -446,7 +461,7 @@ fn projection_class<R>(
     basis: &RowBasis,
     rows: &[&Affine],
     vars: &[Variation<'_, R>],
-    scale: f64,
+    roundoff: f64,
 ) -> Option<Vec<i64>> {
     let quantum = |v: f64, unit: f64| -> Option<i64> {
         let q = (v / unit).round();
@@ -465,10 +480,10 @@ fn projection_class<R>(
         key.push(reduced.len() as i64);
         for &(s, a) in &reduced {
             key.push(i64::from(s));
-            key.push(quantum(a / lead, 1e-9)?);
+            key.push(quantum(a / lead, RELATIVE_ROUNDOFF)?);
         }
         for v in vars {
-            key.push(quantum(r.eval(&v.current) / lead, 1e-9 * scale)?);
+            key.push(quantum(r.eval(&v.current) / lead, roundoff)?);
         }
     }
     Some(key)

@@ -4,7 +4,7 @@
 //! model's slots; the constrained space is its null space. This module turns rows into
 //! matrices and answers rank questions with a tolerance scaled to the rows' magnitude.
 
-use super::project::SlotBlocks;
+use super::slotblocks::SlotBlocks;
 use crate::ir::{Affine, SlotId};
 use nalgebra::DMatrix;
 

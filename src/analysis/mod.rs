@@ -17,6 +17,7 @@ pub mod project;
 pub mod ranges;
 pub mod reparam;
 pub mod rowbasis;
+pub mod slotblocks;
 pub mod tolerance;
 
 pub use candidates::{Candidate, Candidates, RelationKind, find_candidates, find_candidates_for};

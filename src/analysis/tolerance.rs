@@ -7,6 +7,10 @@
 /// Relative tolerance for relations holding on the input.
 pub const RELATIVE_EPSILON: f64 = 1e-6;
 
+/// Relative round-off of a model's numbers: a move or a residual below this fraction of the
+/// largest number is arithmetic noise, not a change (far below [`RELATIVE_EPSILON`]).
+pub const RELATIVE_ROUNDOFF: f64 = 1e-9;
+
 /// An absolute tolerance derived from a model's size.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct Tolerance {
