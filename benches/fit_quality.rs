@@ -5,6 +5,11 @@
 //!
 //! Environment: `FIT_QUALITY_SIZE` (pixels, default 256), `FIT_QUALITY_CASES` (comma-separated
 //! substrings of `model/variant` to run), `FIT_QUALITY_GPU=1` to fit with the wgpu backend.
+//! For experiments, the table's settings can be overridden: `FIT_SHADING`, `FIT_LAMBDA`,
+//! `FIT_POLISH`, `FIT_ROUNDS`, `FIT_LEVELS`, `FIT_SIGMA_END`, and `FIT_ALBEDO`,
+//! `FIT_PROPORTIONS`, `FIT_RELATIVE` (0 or 1); `WARM` and `SCALE` set the rounds of the
+//! structural and stretch stages, and `SLOTS`, `TRUTH`, `TRACE`, `GALLERY=dir` print or draw
+//! more about each fit.
 
 #[path = "../tests/fit_support/quality.rs"]
 mod quality;
@@ -12,7 +17,7 @@ mod quality;
 use reparamc::fit::FitOptions;
 use std::fmt::Write;
 
-/// `options()` with overrides from the environment, for experiments.
+/// The table's settings with overrides from the environment, for experiments.
 fn options_from_env() -> FitOptions {
     let mut o = quality::table_options();
     let get = |k: &str| std::env::var(k).ok().and_then(|v| v.parse::<f64>().ok());

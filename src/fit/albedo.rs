@@ -10,11 +10,11 @@
 //! as before.
 
 use super::loss::Target;
-use crate::render::fit_shade;
 use crate::render::scene::{NSHADE, shade_features};
 use crate::render::soft::HardImage;
 
-/// Albedo below which an item's pixels say too little about the view's shading to fit it.
+/// Albedo below which an item's pixels say too little about the view's shading to fit it
+/// (its grey divided by the albedo would mostly be noise).
 const DARK: f64 = 0.3;
 /// Alternations between shading and albedo fits.
 const ALTERNATIONS: usize = 4;
@@ -43,19 +43,11 @@ pub fn fit_shading(
         .max()
         .map_or(0, |m| (m + 1).max(0) as usize);
     let mut albedo = vec![1.0; items];
-    let mut adjusted: Vec<Target> = targets.to_vec();
     let mut shades = vec![prior; hards.len()];
     let alternations = if per_item { ALTERNATIONS } else { 1 };
     for round in 0..alternations {
-        if round > 0 {
-            adjusted = hards
-                .iter()
-                .zip(targets)
-                .map(|(h, t)| adjust(t, h, &albedo))
-                .collect();
-        }
-        for ((sh, h), t) in shades.iter_mut().zip(hards).zip(&adjusted) {
-            *sh = fit_shade(h, t, prior);
+        for ((sh, h), t) in shades.iter_mut().zip(hards).zip(targets) {
+            *sh = fit_shade(h, t, &albedo, prior);
         }
         if round + 1 < alternations {
             albedo = fit_albedo(hards, targets, &shades, items);
@@ -113,25 +105,60 @@ fn fit_albedo(
     albedo
 }
 
-/// The target as the view's shading alone should explain it: grey divided by the albedo of
-/// the item `hard` shows at each pixel, and no weight on items too dark to tell.
-fn adjust(target: &Target, hard: &HardImage, albedo: &[f64]) -> Target {
-    let mut out = target.clone();
-    out.shade_weight = vec![1.0; target.m.len()];
+/// Fits one view's shading coefficients so that the rendered shade times each item's
+/// albedo matches the target's grey where both show a surface (least squares on the grey
+/// divided by the albedo, gently pulled towards `prior`). Items darker than [`DARK`] are
+/// left out.
+pub fn fit_shade(
+    hard: &HardImage,
+    target: &Target,
+    albedo: &[f64],
+    prior: [f64; NSHADE],
+) -> [f64; NSHADE] {
+    let mut a = nalgebra::SMatrix::<f64, NSHADE, NSHADE>::zeros();
+    let mut b = nalgebra::SVector::<f64, NSHADE>::zeros();
+    let mut count = 0usize;
+    let mut grey_sum = 0.0;
     for (i, &k) in hard.item.iter().enumerate() {
-        if k < 0 {
+        if k < 0 || target.m[i] < SOLID {
             continue;
         }
-        let a = albedo.get(k as usize).copied().unwrap_or(1.0);
-        if a < DARK {
-            out.shade_weight[i] = 0.0;
+        let alb = albedo.get(k as usize).copied().unwrap_or(1.0);
+        if alb < DARK {
             continue;
         }
-        let grey = (f64::from(target.grey[i]) / a) as f32;
-        out.grey[i] = grey;
-        out.s[i] = target.m[i] * grey;
+        let n = hard.normal[i].map(f64::from);
+        let f = nalgebra::SVector::<f64, NSHADE>::from(shade_features(n));
+        // The grey stays an f32, like the target's channels.
+        let g = f64::from((f64::from(target.grey[i]) / alb) as f32);
+        a += f * f.transpose();
+        b += f * g;
+        grey_sum += g;
+        count += 1;
     }
-    out
+    if count < 8 {
+        return prior;
+    }
+    // Pull towards the prior rescaled to the target's mean grey.
+    let mean = grey_sum / count as f64;
+    let prior_mean = prior[0] + prior[4] * 0.5;
+    let k = if prior_mean > 0.0 {
+        mean / prior_mean
+    } else {
+        1.0
+    };
+    let mu = 1e-3 * count as f64;
+    for i in 0..NSHADE {
+        a[(i, i)] += mu;
+        b[i] += mu * prior[i] * k;
+    }
+    match a.cholesky() {
+        Some(ch) => {
+            let c = ch.solve(&b);
+            std::array::from_fn(|i| c[i])
+        }
+        None => prior,
+    }
 }
 
 #[cfg(test)]
@@ -182,7 +209,6 @@ mod tests {
             s,
             grey,
             background: [1.0; 3],
-            shade_weight: Vec::new(),
         };
         (hard, t)
     }
@@ -223,9 +249,21 @@ mod tests {
     #[test]
     fn dark_items_do_not_steer_the_shading() {
         let (hard, t) = scene();
-        let adjusted = adjust(&t, &hard, &[1.0, 0.1]);
-        assert_eq!(adjusted.shade_weight[5 * 30 + 15], 0.0, "dark item");
-        assert_eq!(adjusted.shade_weight[5 * 30 + 5], 1.0, "bright item");
-        assert_eq!(adjusted.m, t.m, "coverage is unchanged");
+        // Whatever the dark item's pixels show, the shading fitted with its albedo below
+        // DARK is the same.
+        let mut other = t.clone();
+        for (i, &k) in hard.item.iter().enumerate() {
+            if k == 1 {
+                other.grey[i] = 0.9;
+                other.s[i] = 0.9;
+            }
+        }
+        let albedo = [1.0, 0.1];
+        let a = fit_shade(&hard, &t, &albedo, DEFAULT_SHADE);
+        let b = fit_shade(&hard, &other, &albedo, DEFAULT_SHADE);
+        assert_eq!(a, b);
+        // With a bright albedo those pixels count.
+        let c = fit_shade(&hard, &other, &[1.0, 1.0], DEFAULT_SHADE);
+        assert_ne!(a, c);
     }
 }

@@ -50,9 +50,6 @@ pub struct Target {
     pub grey: Vec<f32>,
     /// The background colour found at the border.
     pub background: [f32; 3],
-    /// Per-pixel weight of the pixel's grey when shading is fitted to it (empty: 1
-    /// everywhere; see [`crate::render::fit_shade`] and [`crate::fit::albedo`]).
-    pub shade_weight: Vec<f32>,
 }
 
 /// Colour distance below which a pixel is background, and above which it is foreground,
@@ -90,7 +87,6 @@ impl Target {
             s,
             grey,
             background,
-            shade_weight: Vec::new(),
         }
     }
 
@@ -109,7 +105,6 @@ impl Target {
             s: img.s.clone(),
             grey,
             background: [1.0; 3],
-            shade_weight: Vec::new(),
         }
     }
 
@@ -117,11 +112,6 @@ impl Target {
     pub fn pooled(&self) -> Target {
         let (m, w, h) = pool(&self.m, self.width, self.height);
         let s = pool(&self.s, self.width, self.height).0;
-        let shade_weight = if self.shade_weight.is_empty() {
-            Vec::new()
-        } else {
-            pool(&self.shade_weight, self.width, self.height).0
-        };
         let grey = m
             .iter()
             .zip(&s)
@@ -134,13 +124,7 @@ impl Target {
             s,
             grey,
             background: self.background,
-            shade_weight,
         }
-    }
-
-    /// The shade channel's weight at pixel `i`.
-    pub fn shade_weight_at(&self, i: usize) -> f32 {
-        self.shade_weight.get(i).copied().unwrap_or(1.0)
     }
 
     /// Number of foreground pixels (coverage above one half).

@@ -293,6 +293,27 @@ impl Parametric {
     }
 }
 
+/// Among `candidates` that `ok` accepts, the one with the lowest loss below `best` (the
+/// first in order among equals) and its loss; `None` when none improves.
+fn best_improvement(
+    candidates: impl IntoIterator<Item = Vec<f64>>,
+    best: f64,
+    loss: &mut dyn FnMut(&[f64]) -> f64,
+    ok: &dyn Fn(&[f64]) -> bool,
+) -> Option<(f64, Vec<f64>)> {
+    let mut chosen: Option<(f64, Vec<f64>)> = None;
+    for cand in candidates {
+        if !ok(&cand) {
+            continue;
+        }
+        let l = loss(&cand);
+        if l < best && chosen.as_ref().is_none_or(|(b, _)| l < *b) {
+            chosen = Some((l, cand));
+        }
+    }
+    chosen
+}
+
 /// One optimiser step's record.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct Step {
@@ -460,18 +481,15 @@ pub fn fit(
     {
         max_level += 1;
     }
-    // Each level's cameras and targets.
-    let mut cams_at: Vec<Vec<Camera>> = vec![cameras.to_vec()];
+    let mut pyramid: Vec<(Vec<Camera>, Vec<Target>)> = vec![(cameras.to_vec(), targets.to_vec())];
     for k in 1..=max_level as usize {
-        let next = cams_at[k - 1]
-            .iter()
-            .map(|c| c.with_size(c.width / 2, c.height / 2))
-            .collect();
-        cams_at.push(next);
-    }
-    let mut pyramid: Vec<Vec<Target>> = vec![targets.to_vec()];
-    for k in 1..=max_level as usize {
-        let next = pyramid[k - 1].iter().map(Target::pooled).collect();
+        let (cams, tgts) = &pyramid[k - 1];
+        let next = (
+            cams.iter()
+                .map(|c| c.with_size(c.width / 2, c.height / 2))
+                .collect(),
+            tgts.iter().map(Target::pooled).collect(),
+        );
         pyramid.push(next);
     }
     let level_at = |r: usize| -> usize {
@@ -495,7 +513,7 @@ pub fn fit(
         } else {
             (level, 0)
         };
-        let (cams, tgts) = (&cams_at[render_level], &pyramid[render_level]);
+        let (cams, tgts) = &pyramid[render_level];
         let scene = problem.scene(x).with_albedo(&look.albedo);
         let views: Vec<ViewPrep> = cams
             .iter()
@@ -577,15 +595,7 @@ pub fn fit(
                 .map(|c| prepare_view(&scene, c, Some(sigma)))
                 .collect();
             backend
-                .loss(
-                    &scene,
-                    &views,
-                    sigma,
-                    &look.shades,
-                    &pyramid[0],
-                    &spec,
-                    false,
-                )
+                .loss(&scene, &views, sigma, &look.shades, targets, &spec, false)
                 .total()
         };
         x = proportions::search(x, &weights, &mut coarse, &valid);

@@ -51,28 +51,19 @@ pub fn polish(
                 if extent.is_nan() || extent <= 0.0 || form.is_constant() {
                     continue;
                 }
-                let mut chosen: Option<(f64, Vec<f64>)> = None;
                 // Outwards is up for a high face, down for a low one.
                 let out = if high { 1.0 } else { -1.0 };
-                for frac in FACE_MOVES {
+                let moves = FACE_MOVES.iter().filter_map(|frac| {
                     let shift = out * frac * extent;
                     let mut b = nalgebra::DVector::zeros(faces.len());
                     b[j] = shift;
                     let dx = &pinv * b;
                     let cand: Vec<f64> = x.iter().zip(dx.iter()).map(|(a, b)| a + b).collect();
                     // The move must actually move that face.
-                    if (form.eval(&cand) - form.eval(&x) - shift).abs() > 1e-6 * extent {
-                        continue;
-                    }
-                    if !ok(&cand) {
-                        continue;
-                    }
-                    let l = loss(&cand);
-                    if l < best && chosen.as_ref().is_none_or(|(b, _)| l < *b) {
-                        chosen = Some((l, cand));
-                    }
-                }
-                if let Some((l, cand)) = chosen {
+                    let moved = (form.eval(&cand) - form.eval(&x) - shift).abs() <= 1e-6 * extent;
+                    moved.then_some(cand)
+                });
+                if let Some((l, cand)) = super::best_improvement(moves, best, loss, ok) {
                     best = l;
                     x = cand;
                     improved = true;
@@ -98,31 +89,21 @@ mod tests {
         let m = crate::load_model(&mut sources, &path).unwrap().model;
         let p = Parametric::new(&m);
         let arm = m.parts.iter().position(|q| q.name == "left_arm").unwrap();
-        let volume = |x: &[f64]| -> f64 {
-            (0..3u8)
-                .map(|a| {
-                    let v: Vec<f64> = p.faces[arm]
-                        .iter()
-                        .filter(|f| f.0 == a)
-                        .map(|f| f.2.eval(x))
-                        .collect();
-                    v.iter().fold(f64::MIN, |m, &x| m.max(x))
-                        - v.iter().fold(f64::MAX, |m, &x| m.min(x))
-                })
-                .product()
-        };
-        let v0 = volume(&p.x0);
-        let x = polish(&p, p.x0.clone(), 1, &mut |x| volume(x), &|x| {
-            (0..3u8).all(|a| {
+        let extents = |x: &[f64]| -> [f64; 3] {
+            std::array::from_fn(|a| {
                 let v: Vec<f64> = p.faces[arm]
                     .iter()
-                    .filter(|f| f.0 == a)
+                    .filter(|f| usize::from(f.0) == a)
                     .map(|f| f.2.eval(x))
                     .collect();
                 v.iter().fold(f64::MIN, |m, &x| m.max(x))
                     - v.iter().fold(f64::MAX, |m, &x| m.min(x))
-                    > 0.0
             })
+        };
+        let volume = |x: &[f64]| -> f64 { extents(x).iter().product() };
+        let v0 = volume(&p.x0);
+        let x = polish(&p, p.x0.clone(), 1, &mut |x| volume(x), &|x| {
+            extents(x).iter().all(|&e| e > 0.0)
         });
         let v = volume(&x);
         assert!(v < 0.01 * v0, "arm volume {v0} -> {v}");

@@ -37,18 +37,8 @@ pub fn search(
             if weights.iter().all(|w| w[axis] == 0.0) {
                 continue;
             }
-            let mut chosen: Option<(f64, Vec<f64>)> = None;
-            for f in LADDER {
-                let cand = stretched(&x, weights, axis, f.powf(power));
-                if !ok(&cand) {
-                    continue;
-                }
-                let l = loss(&cand);
-                if l < best && chosen.as_ref().is_none_or(|(b, _)| l < *b) {
-                    chosen = Some((l, cand));
-                }
-            }
-            if let Some((l, cand)) = chosen {
+            let ladder = LADDER.map(|f| stretched(&x, weights, axis, f.powf(power)));
+            if let Some((l, cand)) = super::best_improvement(ladder, best, loss, ok) {
                 best = l;
                 x = cand;
             }

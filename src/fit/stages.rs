@@ -7,7 +7,7 @@
 
 use super::optimize;
 use crate::ir::{Affine, Model};
-use crate::render::scene::{NTHETA, PartGeom, theta_forms};
+use crate::render::scene::{Kind, PartGeom, theta_forms};
 use nalgebra::DMatrix;
 
 /// One stage of a fit: where it moves and for how many rounds. Each stage starts where the
@@ -103,27 +103,19 @@ pub fn axis_weights(parts: &[crate::ir::Part], slots: usize) -> Vec<[f64; 3]> {
                 [0.0; 3]
             }
         };
-        let locals: &[usize] = match g.kind {
-            crate::render::scene::Kind::Box => &[0, 1, 2],
-            crate::render::scene::Kind::Frustum => &[2, 0, 0],
-            crate::render::scene::Kind::Sphere => &[0],
-        };
-        for (k, form) in forms.iter().enumerate().take(NTHETA) {
+        for (k, form) in forms.iter().enumerate() {
             let Some(form) = form else { continue };
-            let axes: [f64; 3] = if k < 12 {
-                let mut a = [0.0; 3];
-                a[k / 4] = 1.0;
-                a
-            } else {
-                match (g.kind, locals.get(k - 12)) {
-                    (crate::render::scene::Kind::Sphere, _) => [1.0 / 3.0; 3],
-                    (crate::render::scene::Kind::Frustum, Some(_)) if k > 12 => {
-                        let (x, y) = (local_to_world(0), local_to_world(1));
-                        std::array::from_fn(|r| 0.5 * (x[r] + y[r]))
-                    }
-                    (_, Some(&c)) => local_to_world(c),
-                    (_, None) => [0.0; 3],
+            let axes: [f64; 3] = match (k, g.kind) {
+                // Placement: row `k / 4` of the world transform.
+                (0..12, _) => std::array::from_fn(|r| if r == k / 4 { 1.0 } else { 0.0 }),
+                (_, Kind::Box) => local_to_world(k - 12),
+                // A frustum's height, then its two radii (across its axis).
+                (12, Kind::Frustum) => local_to_world(2),
+                (_, Kind::Frustum) => {
+                    let (x, y) = (local_to_world(0), local_to_world(1));
+                    std::array::from_fn(|r| 0.5 * (x[r] + y[r]))
                 }
+                (_, Kind::Sphere) => [1.0 / 3.0; 3],
             };
             for &(s, a) in &form.terms {
                 for r in 0..3 {

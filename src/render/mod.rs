@@ -17,7 +17,7 @@ pub mod scene;
 pub mod soft;
 
 use crate::fit::loss::{LossSpec, Target, view_loss};
-use scene::{NSHADE, NTHETA, Scene, shade_features};
+use scene::{NSHADE, NTHETA, Scene};
 use soft::{HardImage, SoftImage, ViewPrep};
 
 /// A loss value per view and, when asked, its gradient per part parameter.
@@ -130,50 +130,5 @@ impl Backend for CpuBackend {
             }
         }
         LossOut { per_view, dtheta }
-    }
-}
-
-/// Fits shading coefficients so that rendered shade matches the target's grey levels where
-/// both show a surface (least squares, gently pulled towards `prior`).
-pub fn fit_shade(hard: &HardImage, target: &Target, prior: [f64; NSHADE]) -> [f64; NSHADE] {
-    let mut a = nalgebra::SMatrix::<f64, NSHADE, NSHADE>::zeros();
-    let mut b = nalgebra::SVector::<f64, NSHADE>::zeros();
-    let mut count = 0usize;
-    let mut grey_sum = 0.0;
-    for i in 0..hard.item.len() {
-        let w = f64::from(target.shade_weight_at(i));
-        if hard.item[i] < 0 || target.m[i] < 0.99 || w <= 0.0 {
-            continue;
-        }
-        let n = hard.normal[i].map(|v| v as f64);
-        let f = nalgebra::SVector::<f64, NSHADE>::from(shade_features(n));
-        let g = target.grey[i] as f64;
-        a += w * f * f.transpose();
-        b += w * f * g;
-        grey_sum += g;
-        count += 1;
-    }
-    if count < 8 {
-        return prior;
-    }
-    // Pull towards the prior rescaled to the target's mean grey.
-    let mean = grey_sum / count as f64;
-    let prior_mean = prior[0] + prior[4] * 0.5;
-    let k = if prior_mean > 0.0 {
-        mean / prior_mean
-    } else {
-        1.0
-    };
-    let mu = 1e-3 * count as f64;
-    for i in 0..NSHADE {
-        a[(i, i)] += mu;
-        b[i] += mu * prior[i] * k;
-    }
-    match a.cholesky() {
-        Some(ch) => {
-            let c = ch.solve(&b);
-            std::array::from_fn(|i| c[i])
-        }
-        None => prior,
     }
 }

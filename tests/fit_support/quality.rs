@@ -16,7 +16,7 @@ use std::time::Instant;
 
 /// The settings of the quality table: Adam (the paper's SGD needs many more rounds on
 /// targets this far from the base), the paper's loss, 10 rounds of 30 iterations, the
-/// first half in the structural subspace.
+/// first half warm (one round stretching the model, then the structural subspace).
 pub fn table_options() -> FitOptions {
     FitOptions {
         optimizer: Optimizer::adam(),
