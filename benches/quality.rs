@@ -15,11 +15,25 @@ fn main() {
         eprintln!("quality: run `cargo bench --bench quality` for the table");
         return;
     }
-    for seed in SEEDS {
-        let rows: Vec<table1::Row> = table1::MODELS
-            .iter()
-            .map(|m| table1::evaluate(m, seed))
-            .collect();
+    // `QUALITY_SEEDS=1,2` and `QUALITY_MODELS=chair,car` narrow the run (with
+    // `TABLE1_TRACE=1` to print every greedy step).
+    let seeds: Vec<u64> = match std::env::var("QUALITY_SEEDS") {
+        Ok(list) => list
+            .split(',')
+            .map(|s| {
+                s.trim()
+                    .parse()
+                    .expect("QUALITY_SEEDS: comma-separated integers")
+            })
+            .collect(),
+        Err(_) => SEEDS.to_vec(),
+    };
+    let models: Vec<String> = match std::env::var("QUALITY_MODELS") {
+        Ok(list) => list.split(',').map(|s| s.trim().to_string()).collect(),
+        Err(_) => table1::MODELS.iter().map(|m| m.to_string()).collect(),
+    };
+    for seed in seeds {
+        let rows: Vec<table1::Row> = models.iter().map(|m| table1::evaluate(m, seed)).collect();
         println!("noise seed {seed:#x}");
         print!("{}", table1::table(&rows));
         println!();

@@ -14,6 +14,7 @@ use crate::analysis::optional::{Toggle, optional_parts, toggles};
 use crate::analysis::project::{Faces, project_onto};
 use crate::analysis::ranges::{Range, ranges};
 use crate::analysis::reparam::{Expression, Solution, anchor_rows_at, solve};
+use crate::analysis::tiers::{TIER_NAMES, discovery_tiers, plausible_steps};
 use crate::analysis::tolerance::Tolerance;
 use crate::analysis::{find_candidates_for, prior};
 use crate::back::emit::{Blend, EmitPlan, Slider, Switch, emit, number};
@@ -457,27 +458,6 @@ fn toggle_name(model: &Model, t: &Toggle, taken: &HashSet<String>) -> (String, S
     (name, description)
 }
 
-/// The tier of relations some variation breaks beyond its noise: never kept.
-const DEFERRED: u8 = 2;
-const TIER_NAMES: [&str; 3] = ["structural", "other", "beyond noise"];
-
-/// Discovery's order of preference: relations that hold a design together (the structural
-/// prior) first, other relations the variations keep within their noise next, relations they
-/// break last. Under noise IoU alone cannot separate an accidental equality of two unrelated
-/// sizes from the real ones; the prior breaks the tie the way a designer would.
-fn discovery_tiers(model: &Model, candidates: &Candidates, deferred: &[bool]) -> Vec<u8> {
-    let mut tiers = vec![1u8; candidates.list.len()];
-    for i in prior::structural_prior(model, candidates) {
-        tiers[i] = 0;
-    }
-    for (t, &d) in tiers.iter_mut().zip(deferred) {
-        if d {
-            *t = DEFERRED;
-        }
-    }
-    tiers
-}
-
 /// Runs the main job on a loaded model.
 pub fn reparameterize(
     sources: &SourceMap,
@@ -541,10 +521,11 @@ pub fn reparameterize(
                 optional: o.clone(),
             })
             .collect();
-        let gate = noise_gate(&candidates, &samples, Tolerance::for_size(model.size()));
-        let tiers = discovery_tiers(model, &candidates, &gate.deferred);
+        let tolerance = Tolerance::for_size(model.size());
+        let gate = noise_gate(&candidates, &samples, tolerance);
+        let tiers = discovery_tiers(model, &candidates, &gate, tolerance);
         let disc = discover(&faces, &candidates, &samples, d, &sim, &tiers);
-        let plausible = disc.tiers.iter().take_while(|&&t| t < DEFERRED).count();
+        let plausible = plausible_steps(&disc.tiers);
         let c = cutoff(&disc.curve, DISTORTION_TOLERANCE, plausible);
         let text = disc
             .order

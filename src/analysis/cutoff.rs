@@ -59,12 +59,11 @@ fn derivative(curve: &[f64]) -> Vec<f64> {
 /// How many times the typical step a step may cost before it counts as past the jump.
 pub const OUTLIER_FACTOR: f64 = 3.0;
 
-/// Below this a step's distortion is exact-arithmetic noise, never a jump.
-pub const STEP_FLOOR: f64 = 1e-3;
-
-/// Whether a step's increment stands out from the `earlier` ones (their median).
-fn is_outlier(increment: f64, earlier: &[f64]) -> bool {
-    increment > STEP_FLOOR && increment > OUTLIER_FACTOR * median(earlier)
+/// Whether a step's increment stands out from the `earlier` ones (their median). A step
+/// costing no more than `tolerance` (the distortion the variations' noise explains) never
+/// does.
+fn is_outlier(increment: f64, earlier: &[f64], tolerance: f64) -> bool {
+    increment > tolerance && increment > OUTLIER_FACTOR * median(earlier)
 }
 
 /// Decides how many chosen constraints to keep from the distortion `curve`
@@ -102,7 +101,7 @@ pub fn cutoff(curve: &[f64], tolerance: f64, plausible: usize) -> Cutoff {
     // fights the variations.
     let increments: Vec<f64> = curve.windows(2).map(|w| w[1] - w[0]).collect();
     let mut keep = paper.min(plausible);
-    while keep > 0 && is_outlier(increments[keep - 1], &increments[..keep - 1]) {
+    while keep > 0 && is_outlier(increments[keep - 1], &increments[..keep - 1], tolerance) {
         keep -= 1;
     }
     let mut reason = format!(

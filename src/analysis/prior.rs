@@ -18,7 +18,7 @@ fn touching(model: &Model, a: usize, b: usize, tol: &Tolerance) -> bool {
 }
 
 /// Parts that are repeats of each other: same primitive kind and the same sorted extents.
-fn repeated(model: &Model, a: usize, b: usize, tol: &Tolerance) -> bool {
+pub(crate) fn repeated(model: &Model, a: usize, b: usize, tol: &Tolerance) -> bool {
     let (pa, pb) = (&model.parts[a], &model.parts[b]);
     if pa.primitive.kind_name() != pb.primitive.kind_name() {
         return false;

@@ -118,6 +118,11 @@ fn cylinder_axis(part: &Part) -> Option<usize> {
     (0..3).find(|&i| align[i].0 == 2)
 }
 
+/// The world axis along a cylinder's own axis (its `length`); `None` for other parts.
+pub fn axial_axis(part: &Part) -> Option<usize> {
+    cylinder_axis(part).filter(|_| matches!(part.primitive, Primitive::Cylinder { .. }))
+}
+
 /// Every feature of `part` (index `index`), or `None` if the part is off the axes.
 pub fn part_features(part: &Part, index: usize) -> Option<Vec<Feature>> {
     let iv = world_intervals(part)?;
@@ -215,8 +220,7 @@ pub fn part_features(part: &Part, index: usize) -> Option<Vec<Feature>> {
             );
         }
     }
-    let axial =
-        cylinder_axis(part).filter(|_| matches!(part.primitive, Primitive::Cylinder { .. }));
+    let axial = axial_axis(part);
     for a in 0..3 {
         let role = if Some(a) == axial {
             "length"

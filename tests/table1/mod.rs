@@ -145,17 +145,30 @@ pub fn evaluate(name: &str, seed: u64) -> Row {
     truth.extend(anchors.iter());
     let clean_dimension = linalg::nullity(&truth, model.slots.len());
     let faces = Faces::of(&model);
+    let reach = |kept: &[&Affine]| {
+        clean_values
+            .iter()
+            .zip(&optional)
+            .map(|(v, skip)| {
+                let own = anchor_rows_at(&model, v);
+                let rows: Vec<&Affine> = kept.iter().copied().chain(own.iter()).collect();
+                let p = project_onto(&faces, v, &rows, skip);
+                sim.similarity(&p, v, skip)
+            })
+            .fold(1.0, f64::min)
+    };
     let kept: Vec<&Affine> = compiled.kept.iter().flat_map(|c| c.rows.iter()).collect();
-    let reachability = clean_values
-        .iter()
-        .zip(&optional)
-        .map(|(v, skip)| {
-            let own = anchor_rows_at(&model, v);
-            let rows: Vec<&Affine> = kept.iter().copied().chain(own.iter()).collect();
-            let p = project_onto(&faces, v, &rows, skip);
-            sim.similarity(&p, v, skip)
-        })
-        .fold(1.0, f64::min);
+    let reachability = reach(&kept);
+    if std::env::var_os("TABLE1_TRACE").is_some() {
+        trace(
+            &compiled,
+            &candidates,
+            &clean_values,
+            &optional,
+            tol,
+            &reach,
+        );
+    }
     Row {
         model: name.to_string(),
         parameters: model.slots.len(),
@@ -165,6 +178,74 @@ pub fn evaluate(name: &str, seed: u64) -> Row {
         clean_dimension,
         reachability,
         cutoff_step: compiled.report.cutoff.as_ref().map_or(0, |c| c.keep),
+    }
+}
+
+/// Prints every greedy step: whether the clean variations keep the relation, its residual in
+/// the noisy ones, the step's worst loss and the curve (for studying the cutoff).
+fn trace(
+    compiled: &reparamc::compile::Compiled,
+    candidates: &reparamc::analysis::candidates::Candidates,
+    clean: &[Vec<f64>],
+    optional: &[Vec<usize>],
+    tol: f64,
+    reach: &dyn Fn(&[&Affine]) -> f64,
+) {
+    let r = &compiled.report;
+    if let Some(g) = &r.noise {
+        eprintln!(
+            "{}: noise level {:.4} threshold {:.4}",
+            r.model, g.level, g.threshold
+        );
+    }
+    if let Some(c) = &r.cutoff {
+        eprintln!(
+            "cutoff keep {} paper {} published {}: {}",
+            c.keep, c.paper, c.published, c.reason
+        );
+    }
+    let by_text: std::collections::HashMap<String, usize> = candidates
+        .list
+        .iter()
+        .enumerate()
+        .map(|(i, c)| (candidates.describe(c), i))
+        .collect();
+    let mut prefix: Vec<&Affine> = Vec::new();
+    for (s, ch) in r.chosen.iter().enumerate() {
+        if let Some(&i) = by_text.get(&ch.relation) {
+            prefix.extend(candidates.list[i].rows.iter());
+        }
+        let clean_residual = by_text.get(&ch.relation).map_or(0.0, |&i| {
+            let c = &candidates.list[i];
+            clean
+                .iter()
+                .flat_map(|v| c.rows.iter().map(|row| row.eval(v).abs()))
+                .fold(0.0, f64::max)
+        });
+        let truth = by_text.get(&ch.relation).map(|&i| {
+            let c = &candidates.list[i];
+            let parts = [candidates.features[c.a].part, candidates.features[c.b].part];
+            clean.iter().zip(optional).all(|(v, skip)| {
+                parts.iter().any(|p| skip.contains(p))
+                    || c.rows.iter().all(|row| row.eval(v).abs() <= tol)
+            })
+        });
+        eprintln!(
+            "{:>3} {:<6} {:<12} res {:>8.4} clean {:>8.4} worst {:>8.5} curve {:>8.5} reach {:.4}  {}",
+            s + 1,
+            match truth {
+                Some(true) => "true",
+                Some(false) => "FALSE",
+                None => "?",
+            },
+            ch.tier.unwrap_or(""),
+            ch.residual.unwrap_or(0.0),
+            clean_residual,
+            ch.worst_loss.unwrap_or(0.0),
+            r.distortion_curve[s + 1],
+            reach(&prefix),
+            ch.relation
+        );
     }
 }
 
