@@ -342,6 +342,7 @@ impl Integrator<'_> {
         let mut ys = std::mem::take(&mut self.ybreaks);
         ys.clear();
         ys.extend([r.lo[inner], r.hi[inner]]);
+        let ys_hi = r.hi[inner];
         for &i in ids {
             let s = self.shape(i);
             if c >= s.lo[o] && c <= s.hi[o] {
@@ -356,7 +357,14 @@ impl Integrator<'_> {
         }
         ys.retain(|&y| y >= r.lo[inner] && y <= r.hi[inner]);
         ys.sort_unstable_by(f64::total_cmp);
-        ys.dedup();
+        // Breaks closer than rounding noise (the rim of two coaxial parts computed from
+        // matrices an ulp apart) would only make slivers whose rays see a structure by
+        // chance, which would make the line's kinds flicker from line to line.
+        let eps = self.eps;
+        ys.dedup_by(|b, a| *b - *a <= eps);
+        if let Some(last) = ys.last_mut() {
+            *last = ys_hi;
+        }
         self.kinds.clear();
         let mut total = [0.0; 3];
         for k in 0..ys.len().saturating_sub(1) {
