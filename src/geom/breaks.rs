@@ -15,7 +15,12 @@
 //!   silhouette points (roots of the discriminant of the ray–quadric equation, a quadratic
 //!   along the line). The same curves cut with a line of the other family give where the
 //!   shape's footprint crosses the side of an integration cell, which are outer breaks of
-//!   that cell.
+//!   that cell. [`Shape::labelled_breaks`] names each break's curve (for `crossings`).
+//!   Bounds are breaks of boxes only: a curved shape's footprint is bounded by its rims and
+//!   silhouette.
+//! - [`Shape::level_breaks`], [`Shape::level_axis_breaks`]: the same for the curve where a
+//!   cone's or sphere's surface meets a horizontal plane `z = h` (another shape's flat cap,
+//!   a clip plane): there the length inside a boolean of the two has a kink.
 //!
 //! Break points are candidates: extra ones cost a little time, never accuracy.
 

@@ -15,13 +15,17 @@
 //! - **Strips.** The x breaks of the cell's shapes (bounds, corners, rim extremes, where a
 //!   footprint crosses the cell's side) cut it into strips. A strip whose shapes are all
 //!   extrusions along x (axis-aligned boxes among them) looks the same on every line: one
-//!   line at its middle, and along it one ray per y cell, is *exact*. Other strips integrate
-//!   `g(x) = ∫ f dy` adaptively (`quad`), locating kinks where the set of kinds of stretch
-//!   met by the line changes.
+//!   line at its middle, and along it one ray per y cell, is *exact*. Other strips are cut
+//!   further where break curves of shapes that overlap in z cross (`crossings`), and
+//!   integrate `g(x) = ∫ f dy` adaptively (`quad`) from those pieces, locating remaining
+//!   kinks where the set of kinds of stretch met by the line changes.
+//! - **Level curves.** Where a curved surface meets a flat cap of another shape of the leaf
+//!   (or a clip plane), the length inside their boolean has a kink: each such curve is a
+//!   break of the lines, and its tangents along the lines are breaks of the strips.
 //! - **Lines.** Along a line the y breaks cut it into segments; a segment seen only by
 //!   extrusions along y or z (aligned boxes, upright cylinders) takes one ray, others are
 //!   integrated adaptively. Rays return a signature (the merged order of every interval end)
-//!   so kinks are found and split exactly.
+//!   so kinks are found and split exactly. Breaks closer than `eps` are one.
 //!
 //! Invariants: the result is a sum of finite terms; the z clip and the xy domain bound the
 //! integral to the requested region; shapes with an empty footprint never enter a cell.
