@@ -15,17 +15,22 @@
 //! - **Strips.** The x breaks of the cell's shapes (bounds, corners, rim extremes, where a
 //!   footprint crosses the cell's side) cut it into strips. A strip whose shapes are all
 //!   extrusions along x (axis-aligned boxes among them) looks the same on every line: one
-//!   line at its middle, and along it one ray per y cell, is *exact*. Other strips integrate
-//!   `g(x) = ∫ f dy` adaptively (`quad`), locating kinks where the set of kinds of stretch
-//!   met by the line changes.
+//!   line at its middle, and along it one ray per y cell, is *exact*. Other strips are cut
+//!   further where break curves of shapes that overlap in z cross (`crossings`), and
+//!   integrate `g(x) = ∫ f dy` adaptively (`quad`) from those pieces, locating remaining
+//!   kinks where the set of kinds of stretch met by the line changes.
+//! - **Level curves.** Where a curved surface meets a flat cap of another shape of the leaf
+//!   (or a clip plane), the length inside their boolean has a kink: each such curve is a
+//!   break of the lines, and its tangents along the lines are breaks of the strips.
 //! - **Lines.** Along a line the y breaks cut it into segments; a segment seen only by
 //!   extrusions along y or z (aligned boxes, upright cylinders) takes one ray, others are
 //!   integrated adaptively. Rays return a signature (the merged order of every interval end)
-//!   so kinks are found and split exactly.
+//!   so kinks are found and split exactly. Breaks closer than `eps` are one.
 //!
 //! Invariants: the result is a sum of finite terms; the z clip and the xy domain bound the
 //! integral to the requested region; shapes with an empty footprint never enter a cell.
 
+use super::crossings::{self, Curves, Hasher};
 use super::csg::{Iv, Program, Surf, clipped_common_len, clipped_len};
 use super::quad::{self, Tol, V3};
 use super::shape::Shape;
@@ -67,6 +72,10 @@ struct Integrator<'a> {
     /// Scratch: the shapes seen by a segment, and the programs pruned to them.
     live: Vec<u32>,
     segment_programs: [Program; 2],
+    /// The leaf's level curves: `(shape, height)` where a curved shape meets a horizontal
+    /// face of another shape, or a clip plane, of the leaf.
+    levels: Vec<(u32, f64)>,
+    crossing_scratch: crossings::Scratch,
 }
 
 /// `(|A|, |B|, |A ∩ B|)` inside the job's region.
@@ -113,6 +122,8 @@ pub(crate) fn integrate(job: &Job) -> V3 {
         axes: (0, 1),
         live: Vec::new(),
         segment_programs: Default::default(),
+        levels: Vec::new(),
+        crossing_scratch: Default::default(),
     };
     let progs = it.restrict(job.programs, &ids);
     let rect = Rect {
@@ -214,6 +225,7 @@ impl Integrator<'_> {
             (0, 1)
         };
         self.axes = (o, inner);
+        self.set_levels(ids);
         let mut cuts = vec![r.lo[o], r.hi[o]];
         for &i in ids {
             let s = self.shape(i);
@@ -223,6 +235,15 @@ impl Integrator<'_> {
             for side in [r.lo[inner], r.hi[inner]] {
                 if !s.aligned && s.lo[inner] < side && side < s.hi[inner] {
                     s.line_breaks(inner, side, &mut cuts);
+                }
+            }
+        }
+        for &(i, h) in &self.levels {
+            let s = self.shape(i);
+            s.level_axis_breaks(o, h, &mut cuts);
+            for side in [r.lo[inner], r.hi[inner]] {
+                if s.lo[inner] < side && side < s.hi[inner] {
+                    s.level_breaks(inner, side, h, &mut |v, _| cuts.push(v));
                 }
             }
         }
@@ -258,13 +279,57 @@ impl Integrator<'_> {
                 let mid = 0.5 * (ca + cb);
                 quad::scale(self.line(mid, &r, &strip, progs, false).0, cb - ca)
             } else {
+                // Known kinks inside the strip: where curves of shapes that meet cross.
+                let mut pieces = vec![ca];
+                let curves = Curves {
+                    shapes: self.shapes,
+                    ids: &strip,
+                    levels: &self.levels,
+                    axes: self.axes,
+                    eps: self.eps,
+                };
+                crossings::crossings(&curves, ca, cb, &mut self.crossing_scratch, &mut pieces);
+                pieces.push(cb);
                 let tol = self.area_tol;
                 let mut g = |c: f64| self.line(c, &r, &strip, progs, true);
-                quad::integrate(&mut g, ca, cb, &tol)
+                quad::integrate_pieces(&mut g, &pieces, &tol)
             };
             total = quad::add(total, part);
         }
         total
+    }
+
+    /// Collects the level curves of the leaf's shapes `ids`: for every curved shape that
+    /// can meet a horizontal plane along a curve of its own, the heights strictly inside it
+    /// of the flat caps of other shapes whose footprints' bounds meet its own, and of the
+    /// clip planes.
+    fn set_levels(&mut self, ids: &[u32]) {
+        let mut levels = std::mem::take(&mut self.levels);
+        levels.clear();
+        let mut hs = Vec::new();
+        for &i in ids {
+            let s = self.shape(i);
+            if !s.has_levels() {
+                continue;
+            }
+            hs.clear();
+            hs.extend([self.z.0, self.z.1]);
+            for &j in ids {
+                let t = self.shape(j);
+                if j != i
+                    && t.has_flat_caps()
+                    && (0..2).all(|a| t.lo[a] < s.hi[a] && s.lo[a] < t.hi[a])
+                {
+                    hs.extend([t.lo[2], t.hi[2]]);
+                }
+            }
+            let eps = self.eps;
+            hs.retain(|&h| h > s.lo[2] + eps && h < s.hi[2] - eps);
+            hs.sort_unstable_by(f64::total_cmp);
+            hs.dedup_by(|b, a| *b - *a <= eps);
+            levels.extend(hs.iter().map(|&h| (i, h)));
+        }
+        self.levels = levels;
     }
 
     /// `∫ f` along the line at outer coordinate `c` across the cell, with a signature of
@@ -281,15 +346,29 @@ impl Integrator<'_> {
         let mut ys = std::mem::take(&mut self.ybreaks);
         ys.clear();
         ys.extend([r.lo[inner], r.hi[inner]]);
+        let ys_hi = r.hi[inner];
         for &i in ids {
             let s = self.shape(i);
             if c >= s.lo[o] && c <= s.hi[o] {
                 s.line_breaks(o, c, &mut ys);
             }
         }
+        for &(i, h) in &self.levels {
+            let s = self.shape(i);
+            if c >= s.lo[o] && c <= s.hi[o] {
+                s.level_breaks(o, c, h, &mut |y, _| ys.push(y));
+            }
+        }
         ys.retain(|&y| y >= r.lo[inner] && y <= r.hi[inner]);
         ys.sort_unstable_by(f64::total_cmp);
-        ys.dedup();
+        // Breaks closer than rounding noise (the rim of two coaxial parts computed from
+        // matrices an ulp apart) would only make slivers whose rays see a structure by
+        // chance, which would make the line's kinds flicker from line to line.
+        let eps = self.eps;
+        ys.dedup_by(|b, a| *b - *a <= eps);
+        if let Some(last) = ys.last_mut() {
+            *last = ys_hi;
+        }
         self.kinds.clear();
         let mut total = [0.0; 3];
         for k in 0..ys.len().saturating_sub(1) {
@@ -393,22 +472,6 @@ impl Integrator<'_> {
             0
         };
         (v, s)
-    }
-}
-
-/// A small non-cryptographic hash of a token sequence.
-struct Hasher(u64);
-
-impl Hasher {
-    fn new() -> Self {
-        Hasher(0x243f_6a88_85a3_08d3)
-    }
-    fn add(&mut self, token: u64) {
-        self.0 = (self.0 ^ token).wrapping_mul(0x9e37_79b9_7f4a_7c15);
-        self.0 ^= self.0 >> 31;
-    }
-    fn finish(&self) -> u64 {
-        self.0
     }
 }
 

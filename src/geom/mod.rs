@@ -44,6 +44,7 @@
 
 mod aabb;
 mod breaks;
+mod crossings;
 mod csg;
 mod integrate;
 mod quad;

@@ -128,6 +128,19 @@ impl Node {
 
 /// `∫ₐᵇ f`; see the module documentation.
 pub(crate) fn integrate(f: &mut impl FnMut(f64) -> (V3, u64), a: f64, b: f64, tol: &Tol) -> V3 {
+    integrate_pieces(f, &[a, b], tol)
+}
+
+/// `∫ f` from the first to the last of `cuts` (increasing), starting from the pieces
+/// between consecutive cuts (known breaks of `f`); the allowance is relative to the whole.
+pub(crate) fn integrate_pieces(
+    f: &mut impl FnMut(f64) -> (V3, u64),
+    cuts: &[f64],
+    tol: &Tol,
+) -> V3 {
+    let (Some(&a), Some(&b)) = (cuts.first(), cuts.last()) else {
+        return [0.0; 3];
+    };
     if !(b > a) {
         return [0.0; 3];
     }
@@ -141,7 +154,17 @@ pub(crate) fn integrate(f: &mut impl FnMut(f64) -> (V3, u64), a: f64, b: f64, to
         done: [0.0; 3],
         err: 0.0,
     };
-    run.add(f, a, b);
+    let first: Vec<_> = cuts
+        .windows(2)
+        .filter(|w| w[1] > w[0])
+        .map(|w| (w[0], w[1], gk(f, w[0], w[1])))
+        .collect();
+    let total = first.iter().fold([0.0; 3], |acc, p| add(acc, p.2.0));
+    let size = total.iter().fold(0.0, |m: f64, v| m.max(v.abs()));
+    run.allowed = (tol.rtol * size).max(tol.atol_density * run.width);
+    for (a, b, g) in first {
+        run.file(f, a, b, g);
+    }
     run.refine(f);
     run.pieces.iter().fold(run.done, |acc, p| add(acc, p.k))
 }
@@ -177,10 +200,13 @@ struct Run {
     err: f64,
 }
 
+/// The result of [`gk`].
+type Gk = (V3, f64, [f64; N], [u64; N]);
+
 /// One Gauss–Kronrod pass over `[a, b]`: the Kronrod value, QUADPACK's error estimate (the
 /// Kronrod–Gauss difference scaled down for smooth integrands), and the nodes' points and
 /// signatures.
-fn gk(f: &mut impl FnMut(f64) -> (V3, u64), a: f64, b: f64) -> (V3, f64, [f64; N], [u64; N]) {
+fn gk(f: &mut impl FnMut(f64) -> (V3, u64), a: f64, b: f64) -> Gk {
     let w = b - a;
     let mut ys = [0.0; N];
     let mut ss = [0u64; N];
@@ -223,11 +249,14 @@ fn gk(f: &mut impl FnMut(f64) -> (V3, u64), a: f64, b: f64) -> (V3, f64, [f64; N
 impl Run {
     /// Evaluates `[a, b]`, splitting it where the structure changes, and files the pieces.
     fn add(&mut self, f: &mut impl FnMut(f64) -> (V3, u64), a: f64, b: f64) {
-        let (k, err, ys, ss) = gk(f, a, b);
-        if self.allowed == 0.0 {
-            let size = k.iter().fold(0.0, |m: f64, v| m.max(v.abs()));
-            self.allowed = (self.tol.rtol * size).max(self.tol.atol_density * self.width);
-        }
+        let g = gk(f, a, b);
+        self.file(f, a, b, g);
+    }
+
+    /// Files `[a, b]` with its Gauss–Kronrod pass `g`, splitting it where the structure
+    /// changes.
+    fn file(&mut self, f: &mut impl FnMut(f64) -> (V3, u64), a: f64, b: f64, g: Gk) {
+        let (k, err, ys, ss) = g;
         // Structure changes narrower than this are left to the error estimate: below it,
         // rounding (two breaks within an ulp, a grazing chord) makes structure flicker.
         let wide = b - a > self.tol.min_width.max(1e-7 * self.width);
