@@ -170,4 +170,20 @@ mod tests {
         assert_eq!(c.keep, 20, "{c:?}");
         assert_eq!(cutoff(&curve, 0.01, 15).keep, 15);
     }
+
+    #[test]
+    fn a_step_within_the_noise_distortion_is_never_an_outlier() {
+        // Steps of 0.001, then one of 0.005 (five times the typical step, but below the
+        // 0.01 the noise explains), then the jump: the 0.005 step is kept.
+        let mut curve = vec![0.0];
+        for i in 1..=10 {
+            curve.push(0.001 * i as f64);
+        }
+        curve.push(0.015);
+        for i in 0..5 {
+            curve.push(0.4 + 0.1 * i as f64);
+        }
+        let c = cutoff(&curve, 0.01, usize::MAX);
+        assert_eq!(c.keep, 11, "{c:?}");
+    }
 }
