@@ -25,7 +25,8 @@
 //! - **Lines.** Along a line the y breaks cut it into segments; a segment seen only by
 //!   extrusions along y or z (aligned boxes, upright cylinders) takes one ray, others are
 //!   integrated adaptively. Rays return a signature (the merged order of every interval end)
-//!   so kinks are found and split exactly. Breaks closer than `eps` are one.
+//!   so kinks are found and split exactly; ends of A and B tie only within rounding noise,
+//!   so surfaces that touch without crossing cost no split. Breaks closer than `eps` are one.
 //!
 //! Invariants: the result is a sum of finite terms; the z clip and the xy domain bound the
 //! integral to the requested region; shapes with an empty footprint never enter a cell.
@@ -519,10 +520,21 @@ fn push_kinds(a: &[Iv], b: &[Iv], z: (f64, f64), eps: f64, out: &mut Vec<u64>) {
     }
 }
 
+/// How far an end of B may lie before an end `t` of A and still tie with it: rounding
+/// noise (a hundredth of `eps`, or ~50 ulps of `t` far from the origin).
+fn tie(t: f64, eps: f64) -> f64 {
+    1e-2 * eps + 1e-14 * t.abs()
+}
+
 /// The end points of both lists and the clip planes, merged in order along the line, each
 /// named by its list, surface and side: equal signatures mean the same formula for `f`.
-/// Ends within `eps` count as one point, ordered A, B, clip (each list is already more than
-/// `eps` apart inside), so coincident faces of A and B do not make the order flicker.
+/// Ends of A and B within rounding noise ([`tie`]) count as one point, ordered A first, so
+/// coincident faces of A and B do not make the order flicker; ends within `eps` of a clip
+/// plane come before it (each list is already more than `eps` apart inside). Ends of A and
+/// B closer than `eps` but not tied keep their true order: where two surfaces touch without
+/// crossing (coaxial copies sharing one scale), ordering them by a fixed rule inside `eps`
+/// would change the signature in a thin band around the contact where `f` is smooth, and
+/// every line through it would be split twice there. A crossing still changes the order.
 fn signature(a: &[Iv], b: &[Iv], z: (f64, f64), eps: f64) -> u64 {
     let end = |v: &[Iv], k: usize| -> (f64, u64) {
         let iv = &v[k / 2];
@@ -546,7 +558,7 @@ fn signature(a: &[Iv], b: &[Iv], z: (f64, f64), eps: f64) -> u64 {
         let ta = if i < na { end(a, i).0 } else { f64::INFINITY };
         let tb = if j < nb { end(b, j).0 } else { f64::INFINITY };
         let tc = if c < nclip { clips[c].0 } else { f64::INFINITY };
-        if i < na && ta <= tb + eps && ta <= tc + eps {
+        if i < na && ta <= tb + tie(ta, eps) && ta <= tc + eps {
             h.add(end(a, i).1);
             i += 1;
         } else if j < nb && tb <= tc + eps {
