@@ -18,7 +18,8 @@
 //!   line at its middle, and along it one ray per y cell, is *exact*. Other strips are cut
 //!   further where break curves of shapes that overlap in z cross (`crossings`), and
 //!   integrate `g(x) = ∫ f dy` adaptively (`quad`) from those pieces, locating remaining
-//!   kinks where the set of kinds of stretch met by the line changes.
+//!   kinks where the set of kinds of stretch met by the line changes; pieces narrower than a
+//!   tenth of their strip take the cheaper 7/15 rule (fewer lines).
 //! - **Level curves.** Where a curved surface meets a flat cap of another shape of the leaf
 //!   (or a clip plane), the length inside their boolean has a kink: each such curve is a
 //!   break of the lines, and its tangents along the lines are breaks of the strips.
@@ -109,12 +110,16 @@ pub(crate) fn integrate(job: &Job) -> V3 {
             atol_density: 1e-11 * size,
             min_width: 1e-9 * size,
             budget: 200,
+            short: 0.0,
         },
         area_tol: Tol {
             rtol: 1e-9,
             atol_density: 1e-10 * size * size,
             min_width: 1e-9 * size,
             budget: 200,
+            // Narrow pieces of strips (between rim extremes of similar parts) are smooth
+            // enough for the 7/15 rule; lines keep 10/21, which needs fewer splits there.
+            short: 0.1,
         },
         mask: vec![false; job.shapes.len()],
         ivs: Vec::new(),
