@@ -39,7 +39,8 @@ pub(crate) struct Tol {
     pub min_width: f64,
     /// Most error-driven splits in one integral.
     pub budget: u32,
-    /// Pieces narrower than this fraction of the whole take Gauss–Kronrod 7/15 (else 10/21).
+    /// Pieces narrower than this fraction of the whole take Gauss–Kronrod 7/15 (else 10/21;
+    /// infinite: every piece).
     pub short: f64,
 }
 
