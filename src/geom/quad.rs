@@ -5,8 +5,9 @@
 //! stretches). Where the signature is constant, `f` is analytic inside the piece, except for
 //! square-root behaviour at the piece's ends (a ray grazing a curved surface there); so:
 //!
-//! - every piece is integrated with Gauss–Kronrod 10/21 after the substitution
-//!   `y = a + (b − a)·sin²(πu/2)`, which makes `√(y − a)` and `√(b − y)` ends analytic;
+//! - every piece is integrated with Gauss–Kronrod 10/21 (7/15 for pieces narrower than
+//!   [`Tol::short`] of the whole) after the substitution `y = a + (b − a)·sin²(πu/2)`,
+//!   which makes `√(y − a)` and `√(b − y)` ends analytic;
 //! - when two nodes of a piece disagree on the signature, the change between them is found
 //!   by bisection (to ~1e-9 of the piece) and the piece is split there, so kinks — where
 //!   two surfaces of a CSG cross — become piece ends instead of slowing convergence;
@@ -38,6 +39,9 @@ pub(crate) struct Tol {
     pub min_width: f64,
     /// Most error-driven splits in one integral.
     pub budget: u32,
+    /// Pieces narrower than this fraction of the whole take Gauss–Kronrod 7/15 (else 10/21;
+    /// infinite: every piece).
+    pub short: f64,
 }
 
 /// Gauss–Kronrod 10/21 (QUADPACK's `qk21`): the Kronrod abscissae in [0, 1] (the rule is
@@ -77,22 +81,60 @@ const WG21: [f64; 5] = [
     0.295_524_224_714_752_87,
 ];
 
-/// Nodes of the rule.
+/// Gauss–Kronrod 7/15 (QUADPACK's `qk15`), laid out as the 10/21 rule; the Gauss rule has
+/// a node at the centre.
+const XK15: [f64; 8] = [
+    0.991_455_371_120_812_6,
+    0.949_107_912_342_758_5,
+    0.864_864_423_359_769_1,
+    0.741_531_185_599_394_4,
+    0.586_087_235_467_691_1,
+    0.405_845_151_377_397_2,
+    0.207_784_955_007_898_5,
+    0.0,
+];
+const WK15: [f64; 8] = [
+    0.022_935_322_010_529_225,
+    0.063_092_092_629_978_55,
+    0.104_790_010_322_250_18,
+    0.140_653_259_715_525_92,
+    0.169_004_726_639_267_9,
+    0.190_350_578_064_785_4,
+    0.204_432_940_075_298_9,
+    0.209_482_141_084_727_83,
+];
+const WG15: [f64; 4] = [
+    0.129_484_966_168_869_7,
+    0.279_705_391_489_276_7,
+    0.381_830_050_505_118_9,
+    0.417_959_183_673_469_4,
+];
+
+/// Most nodes of a rule.
 const N: usize = 21;
 
-/// Node `i` (increasing on [-1, 1]) as `(ξ, kronrod weight, gauss weight)`.
-fn node(i: usize) -> (f64, f64, f64) {
-    let half = XK21.len() - 1;
+/// Node `i` (increasing on [-1, 1]) of a rule `(abscissae, kronrod weights, gauss weights)`
+/// as `(ξ, kronrod weight, gauss weight)`.
+fn node((xk, wk, wg): (&[f64], &[f64], &[f64]), i: usize) -> (f64, f64, f64) {
+    let half = xk.len() - 1;
     let j = if i <= half { i } else { 2 * half - i };
-    let g = if j % 2 == 1 { WG21[j / 2] } else { 0.0 };
-    let x = if i <= half { -XK21[j] } else { XK21[j] };
-    (x, WK21[j], g)
+    let g = if j % 2 == 1 { wg[j / 2] } else { 0.0 };
+    let x = if i <= half { -xk[j] } else { xk[j] };
+    (x, wk[j], g)
 }
 
-/// The rule's nodes after the end-smoothing substitution (computed once).
-fn nodes() -> &'static [Node; N] {
-    static NODES: std::sync::OnceLock<[Node; N]> = std::sync::OnceLock::new();
-    NODES.get_or_init(|| std::array::from_fn(|i| Node::new(node(i))))
+/// The nodes of the 10/21 rule, or of the 7/15 rule when `low_order`, after the
+/// end-smoothing substitution (computed once).
+fn nodes(low_order: bool) -> &'static [Node] {
+    static NODES: std::sync::OnceLock<[Vec<Node>; 2]> = std::sync::OnceLock::new();
+    let rules = NODES.get_or_init(|| {
+        [(&XK21[..], &WK21[..], &WG21[..]), (&XK15, &WK15, &WG15)].map(|r| {
+            (0..2 * r.0.len() - 1)
+                .map(|i| Node::new(node(r, i)))
+                .collect()
+        })
+    });
+    &rules[usize::from(low_order)]
 }
 
 /// One node of the rule on `[0, 1]` after the end-smoothing substitution: the offset from
@@ -157,7 +199,13 @@ pub(crate) fn integrate_pieces(
     let first: Vec<_> = cuts
         .windows(2)
         .filter(|w| w[1] > w[0])
-        .map(|w| (w[0], w[1], gk(f, w[0], w[1])))
+        .map(|w| {
+            (
+                w[0],
+                w[1],
+                gk(f, w[0], w[1], nodes(w[1] - w[0] < tol.short * (b - a))),
+            )
+        })
         .collect();
     let total = first.iter().fold([0.0; 3], |acc, p| add(acc, p.2.0));
     let size = total.iter().fold(0.0, |m: f64, v| m.max(v.abs()));
@@ -200,19 +248,18 @@ struct Run {
     err: f64,
 }
 
-/// The result of [`gk`].
+/// The result of [`gk`] (nodes past the rule's count are unused).
 type Gk = (V3, f64, [f64; N], [u64; N]);
 
 /// One Gauss–Kronrod pass over `[a, b]`: the Kronrod value, QUADPACK's error estimate (the
 /// Kronrod–Gauss difference scaled down for smooth integrands), and the nodes' points and
 /// signatures.
-fn gk(f: &mut impl FnMut(f64) -> (V3, u64), a: f64, b: f64) -> Gk {
+fn gk(f: &mut impl FnMut(f64) -> (V3, u64), a: f64, b: f64, nodes: &[Node]) -> Gk {
     let w = b - a;
     let mut ys = [0.0; N];
     let mut ss = [0u64; N];
     let mut vals = [[0.0; 3]; N];
     let (mut k, mut g) = ([0.0; 3], [0.0; 3]);
-    let nodes = nodes();
     for (i, n) in nodes.iter().enumerate() {
         let y = if n.from_start {
             a + w * n.offset
@@ -247,9 +294,14 @@ fn gk(f: &mut impl FnMut(f64) -> (V3, u64), a: f64, b: f64) -> Gk {
 }
 
 impl Run {
+    /// The nodes of the rule for a piece of width `w`.
+    fn nodes(&self, w: f64) -> &'static [Node] {
+        nodes(w < self.tol.short * self.width)
+    }
+
     /// Evaluates `[a, b]`, splitting it where the structure changes, and files the pieces.
     fn add(&mut self, f: &mut impl FnMut(f64) -> (V3, u64), a: f64, b: f64) {
-        let g = gk(f, a, b);
+        let g = gk(f, a, b, self.nodes(b - a));
         self.file(f, a, b, g);
     }
 
@@ -262,7 +314,7 @@ impl Run {
         let wide = b - a > self.tol.min_width.max(1e-7 * self.width);
         if wide
             && self.structure_splits > 0
-            && let Some(i) = (0..N - 1).find(|&i| ss[i] != ss[i + 1])
+            && let Some(i) = (0..self.nodes(b - a).len() - 1).find(|&i| ss[i] != ss[i + 1])
         {
             self.structure_splits -= 1;
             let y = locate(f, (ys[i], ss[i]), (ys[i + 1], ss[i + 1]), b - a);
@@ -331,6 +383,7 @@ mod tests {
             atol_density: 1e-15,
             min_width: 0.0,
             budget: 4000,
+            short: 0.0,
         }
     }
 
@@ -339,7 +392,7 @@ mod tests {
         for p in 0..=31 {
             let (mut k, mut g) = (0.0, 0.0);
             for i in 0..N {
-                let (x, wk, wg) = node(i);
+                let (x, wk, wg) = node((&XK21, &WK21, &WG21), i);
                 k += wk * x.powi(p);
                 g += wg * x.powi(p);
             }
@@ -353,6 +406,41 @@ mod tests {
                 assert!((g - exact).abs() < 1e-14, "gauss x^{p}: {g} vs {exact}");
             }
         }
+    }
+
+    #[test]
+    fn low_order_rule_is_exact_on_polynomials() {
+        for p in 0..=22 {
+            let (mut k, mut g) = (0.0, 0.0);
+            for i in 0..15 {
+                let (x, wk, wg) = node((&XK15, &WK15, &WG15), i);
+                k += wk * x.powi(p);
+                g += wg * x.powi(p);
+            }
+            let exact = if p % 2 == 0 {
+                2.0 / (p as f64 + 1.0)
+            } else {
+                0.0
+            };
+            assert!((k - exact).abs() < 1e-14, "kronrod x^{p}: {k} vs {exact}");
+            if p <= 13 {
+                assert!((g - exact).abs() < 1e-14, "gauss x^{p}: {g} vs {exact}");
+            }
+        }
+    }
+
+    #[test]
+    fn short_pieces_are_exact() {
+        let mut f = |y: f64| ([(1.0 - y * y).max(0.0).sqrt(), y * y, 1.0], 0);
+        let cuts = [-1.0, -0.99, -0.9, 0.95, 1.0];
+        let t = Tol {
+            short: 0.1,
+            ..tol()
+        };
+        let r = integrate_pieces(&mut f, &cuts, &t);
+        assert!((r[0] - std::f64::consts::FRAC_PI_2).abs() < 1e-13, "{r:?}");
+        assert!((r[1] - 2.0 / 3.0).abs() < 1e-14);
+        assert!((r[2] - 2.0).abs() < 1e-14);
     }
 
     #[test]
