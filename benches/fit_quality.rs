@@ -6,9 +6,9 @@
 //! Environment: `FIT_QUALITY_SIZE` (pixels, default 256), `FIT_QUALITY_CASES` (comma-separated
 //! substrings of `model/variant` to run), `FIT_QUALITY_GPU=1` to fit with the wgpu backend.
 //! For experiments, the table's settings can be overridden: `FIT_SHADING`, `FIT_LAMBDA`,
-//! `FIT_POLISH`, `FIT_ROUNDS`, `FIT_LEVELS`, `FIT_SIGMA_END`, and `FIT_ALBEDO`,
+//! `FIT_POLISH`, `FIT_ROUNDS`, `FIT_LEVELS`, `FIT_SIGMA_END`, and `FIT_ALBEDO`, `FIT_DAMPED` (Adam's floor in the rerun, 0: none),
 //! `FIT_PROPORTIONS`, `FIT_RELATIVE` (0 or 1); `WARM` and `SCALE` set the rounds of the
-//! structural and stretch stages, and `SLOTS`, `TRUTH`, `TRACE`, `GALLERY=dir` print or draw
+//! structural and stretch stages, and `SLOTS`, `TRUTH`, `TRACE`, `BLAME` (the slots whose true value alone gains most IoU), `GALLERY=dir` print or draw
 //! more about each fit.
 
 #[path = "../tests/fit_support/quality.rs"]
@@ -44,6 +44,9 @@ fn options_from_env() -> FitOptions {
     }
     if let Some(v) = get("FIT_PROPORTIONS") {
         o.proportions = v != 0.0;
+    }
+    if let Some(v) = get("FIT_DAMPED") {
+        o.damped_rerun = (v > 0.0).then_some(v);
     }
     if let Some(v) = get("FIT_RELATIVE") {
         o.relative_steps = v != 0.0;
@@ -87,8 +90,8 @@ fn main() {
     for case in &cases {
         let o = quality::run_case(case, &opts, size, 5, backend.as_mut());
         eprintln!(
-            "{:16} {:16} IoU {:.3} -> {:.3}   {:.1} s",
-            o.case.model, o.case.variant, o.iou_start, o.iou, o.seconds
+            "{:16} {:16} IoU {:.3} -> {:.3}   loss {:.5}   {:.1} s",
+            o.case.model, o.case.variant, o.iou_start, o.iou, o.loss_end, o.seconds
         );
         let _ = writeln!(
             md,

@@ -7,7 +7,8 @@
 //! of every view and the albedo of every item are matched to the targets ([`albedo`]: least
 //! squares on the pixels both show as surface) and the silhouettes' softness `σ` steps down
 //! geometrically from `sigma.0` to `sigma.1` pixels, so early rounds see far and later
-//! rounds see sharp.
+//! rounds see sharp. With Adam, each stage also runs damped from the same start and the
+//! run with the lower loss goes on ([`FitOptions::damped_rerun`]).
 
 pub mod albedo;
 pub mod loss;
@@ -58,6 +59,13 @@ pub struct FitOptions {
     pub proportions: bool,
     /// Sweeps of face moves after the gradient rounds (see [`polish`]); 0: none.
     pub polish: usize,
+    /// With Adam: every stage runs a second time from the same start with Adam's `floor`
+    /// at this value, and the run with the lower final loss goes on to the next stage.
+    /// Plain Adam gives a slot whose gradient is noise (a hollow seen only at a hard crease
+    /// inside its box) full-size steps and can walk it out of the model, where nothing
+    /// brings it back; damped Adam keeps such a slot still but moves small parts slowly.
+    /// `None`: one run per stage.
+    pub damped_rerun: Option<f64>,
     /// Smallest world extent of a part, in units of the model's size.
     pub min_extent: f64,
     /// Coarse-to-fine: the first rounds render at `1/2^levels` of the targets' size and
@@ -86,12 +94,16 @@ impl Default for FitOptions {
             min_extent: 0.002,
             relative_steps: false,
             polish: 0,
+            damped_rerun: Some(DAMPED_FLOOR),
             proportions: true,
             levels: 0,
             pooled: true,
         }
     }
 }
+
+/// Adam's `floor` in the damped rerun of every stage ([`FitOptions::damped_rerun`]).
+pub const DAMPED_FLOOR: f64 = 0.05;
 
 /// Floor of relative step scales, in units of the model's size.
 const RELATIVE_FLOOR: f64 = 0.05;
@@ -341,6 +353,7 @@ pub struct FitResult {
 
 /// How the pictures are lit and coloured, refitted each round: each view's shading
 /// coefficients and each item's albedo.
+#[derive(Clone)]
 struct Look {
     shades: Vec<[f64; NSHADE]>,
     albedo: Vec<f64>,
@@ -349,6 +362,8 @@ struct Look {
 /// Progress report, once per step.
 pub struct Progress<'a> {
     pub step: &'a Step,
+    /// Steps taken so far, this one included (reruns count).
+    pub done: usize,
     pub total_steps: usize,
 }
 
@@ -461,7 +476,9 @@ pub fn fit(
         albedo: Vec::new(),
     };
     let rounds: usize = stages.iter().map(|s| s.rounds).sum::<usize>().max(1);
-    let total_steps = rounds * opts.iterations;
+    let rerun = opts.damped_rerun.and_then(|f| opts.optimizer.damped(f));
+    let total_steps = rounds * opts.iterations * if rerun.is_some() { 2 } else { 1 };
+    let mut done = 0;
     let mut curve = Vec::with_capacity(total_steps);
     let sigma_at = |r: usize| {
         if rounds == 1 {
@@ -601,22 +618,30 @@ pub fn fit(
         x = proportions::search(x, &weights, &mut coarse, &valid);
         refit_shades(backend, &x, &mut look);
     }
-    let mut round = 0;
-    for stage in stages {
+    // One stage from `start` with `optimizer`, its steps numbered from `round0`.
+    let mut run_stage = |backend: &mut dyn Backend,
+                         progress: &mut dyn FnMut(&Progress),
+                         stage: &Stage,
+                         start: &[f64],
+                         optimizer: Optimizer,
+                         round0: usize,
+                         look: &mut Look|
+     -> (Vec<f64>, Vec<Step>) {
         let space = match &stage.basis {
-            None => Space::slots(&x, &scales),
-            Some(n) => Space::subspace(&x, n.clone(), &scales),
+            None => Space::slots(start, &scales),
+            Some(n) => Space::subspace(start, n.clone(), &scales),
         };
         let dim = space.dim();
         let mut y = vec![0.0; dim];
-        let mut state = OptState::new(opts.optimizer, dim);
-        for _ in 0..stage.rounds {
+        let mut state = OptState::new(optimizer, dim);
+        let mut steps = Vec::with_capacity(stage.rounds * opts.iterations);
+        for round in round0..round0 + stage.rounds {
             let sigma = sigma_at(round);
             let level = level_at(round);
-            refit_shades(backend, &space.x(&y), &mut look);
+            refit_shades(backend, &space.x(&y), look);
             for it in 0..opts.iterations {
                 let xs = space.x(&y);
-                let out = image_loss(backend, level, &xs, sigma, &look, true);
+                let out = image_loss(backend, level, &xs, sigma, look, true);
                 let (rv, rg) = reg(&xs);
                 let mut gx = problem.chain(&out.dtheta);
                 for (g, r) in gx.iter_mut().zip(&rg) {
@@ -657,15 +682,48 @@ pub fn fit(
                     image_loss: out.total(),
                     sigma,
                 };
-                curve.push(step);
+                steps.push(step);
+                done += 1;
                 progress(&Progress {
                     step: &step,
+                    done,
                     total_steps,
                 });
             }
-            round += 1;
         }
-        x = space.x(&y);
+        (space.x(&y), steps)
+    };
+    // The final loss of a candidate, on the hard surface's shading as the fit ends.
+    let final_loss = |backend: &mut dyn Backend, x: &[f64], look: &mut Look| -> f64 {
+        refit_shades(backend, x, look);
+        image_loss(backend, 0, x, opts.sigma.1, look, false).total() + reg(x).0
+    };
+    let mut round = 0;
+    for stage in stages {
+        let (mut best_x, mut best_steps) = run_stage(
+            backend,
+            progress,
+            stage,
+            &x,
+            opts.optimizer,
+            round,
+            &mut look,
+        );
+        if let Some(damped) = rerun {
+            let mut look_b = look.clone();
+            let (xb, steps_b) = run_stage(backend, progress, stage, &x, damped, round, &mut look_b);
+            let mut look_a = look.clone();
+            let la = final_loss(backend, &best_x, &mut look_a);
+            let lb = final_loss(backend, &xb, &mut look_b);
+            (look, best_x, best_steps) = if lb < la {
+                (look_b, xb, steps_b)
+            } else {
+                (look_a, best_x, best_steps)
+            };
+        }
+        curve.extend(best_steps);
+        x = best_x;
+        round += stage.rounds;
     }
     refit_shades(backend, &x, &mut look);
     if opts.polish > 0 {

@@ -13,13 +13,15 @@ use nalgebra::{DMatrix, DVector};
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Optimizer {
     /// Gradient descent, with optional heavy-ball momentum (0 is the paper's plain SGD).
-    Sgd {
-        momentum: f64,
-    },
+    Sgd { momentum: f64 },
     Adam {
         beta1: f64,
         beta2: f64,
         eps: f64,
+        /// `eps` relative to the largest coordinate's gradient scale: a coordinate whose
+        /// gradient is this much smaller than the largest steps in proportion instead of
+        /// at the full rate (0: plain Adam).
+        floor: f64,
     },
 }
 
@@ -33,6 +35,26 @@ impl Optimizer {
             beta1: 0.9,
             beta2: 0.999,
             eps: 1e-8,
+            floor: 0.0,
+        }
+    }
+
+    /// This Adam with its `floor` at `floor`, if that changes it (`None` for SGD, whose
+    /// steps are already in proportion to the gradient).
+    pub fn damped(self, floor: f64) -> Option<Optimizer> {
+        match self {
+            Optimizer::Adam {
+                beta1,
+                beta2,
+                eps,
+                floor: f,
+            } if f != floor => Some(Optimizer::Adam {
+                beta1,
+                beta2,
+                eps,
+                floor,
+            }),
+            _ => None,
         }
     }
 }
@@ -66,19 +88,25 @@ impl OptState {
                 }
                 self.m.iter().map(|m| lr * m).collect()
             }
-            Optimizer::Adam { beta1, beta2, eps } => {
+            Optimizer::Adam {
+                beta1,
+                beta2,
+                eps,
+                floor,
+            } => {
                 let t = self.t as i32;
                 let c1 = 1.0 - beta1.powi(t);
                 let c2 = 1.0 - beta2.powi(t);
+                for ((m, v), &gi) in self.m.iter_mut().zip(self.v.iter_mut()).zip(g) {
+                    *m = beta1 * *m + (1.0 - beta1) * gi;
+                    *v = beta2 * *v + (1.0 - beta2) * gi * gi;
+                }
+                let top = self.v.iter().fold(0.0f64, |a, &v| a.max(v)) / c2;
+                let eps = eps.max(floor * top.sqrt());
                 self.m
-                    .iter_mut()
-                    .zip(self.v.iter_mut())
-                    .zip(g)
-                    .map(|((m, v), &gi)| {
-                        *m = beta1 * *m + (1.0 - beta1) * gi;
-                        *v = beta2 * *v + (1.0 - beta2) * gi * gi;
-                        lr * (*m / c1) / ((*v / c2).sqrt() + eps)
-                    })
+                    .iter()
+                    .zip(&self.v)
+                    .map(|(m, v)| lr * (m / c1) / ((v / c2).sqrt() + eps))
                     .collect()
             }
         }
@@ -205,6 +233,30 @@ mod tests {
         let mut s = OptState::new(Optimizer::adam(), 2);
         let d = s.step(&[3.0, -0.5], 0.1);
         assert!((d[0] - 0.1).abs() < 1e-6 && (d[1] + 0.1).abs() < 1e-6);
+    }
+
+    #[test]
+    fn damped_adam_steps_a_faint_gradient_in_proportion() {
+        // Plain Adam moves a coordinate whose gradient is 10⁻⁴ of the largest as far as the
+        // largest; with a floor of 0.05 it moves about 10⁻⁴ / 0.05 as far.
+        let g = [1.0, 1e-4];
+        let mut plain = OptState::new(Optimizer::adam(), 2);
+        let mut damped = OptState::new(Optimizer::adam().damped(0.05).unwrap(), 2);
+        let (mut p, mut d) = (vec![0.0; 2], vec![0.0; 2]);
+        for _ in 0..10 {
+            for (a, s) in p.iter_mut().zip(plain.step(&g, 0.1)) {
+                *a += s;
+            }
+            for (a, s) in d.iter_mut().zip(damped.step(&g, 0.1)) {
+                *a += s;
+            }
+        }
+        assert!((p[1] / p[0] - 1.0).abs() < 1e-3, "{p:?}");
+        assert!((d[0] / p[0] - 1.0).abs() < 0.06, "{d:?} vs {p:?}");
+        let ratio = d[1] / d[0];
+        assert!(ratio > 1e-3 && ratio < 3e-3, "{ratio}");
+        assert_eq!(Optimizer::sgd().damped(0.05), None);
+        assert_eq!(Optimizer::adam().damped(0.0), None);
     }
 
     #[test]

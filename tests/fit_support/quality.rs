@@ -151,8 +151,14 @@ pub fn run_case(
     views: usize,
     backend: &mut dyn Backend,
 ) -> Outcome {
-    let base = load(&case.base);
     let target = load(&case.target);
+    // `FROM_TRUTH`: start at the answer, to see whether the fit stays there.
+    let base_path = if std::env::var("FROM_TRUTH").is_ok() {
+        &case.target
+    } else {
+        &case.base
+    };
+    let base = load(base_path);
     if base.slots.len() != target.slots.len() {
         eprintln!(
             "{}: variant has other slots ({} vs {})",
@@ -242,9 +248,28 @@ pub fn run_case(
         }
     }
     let iou_of = |x: &[f64]| {
-        let fitted = fitted_model(&case.base, &base, x);
+        let fitted = fitted_model(base_path, &base, x);
         reparamc::geom::iou((&fitted.parts, &fitted.csg), (&target.parts, &target.csg))
     };
+    if std::env::var("BLAME").is_ok() && base.slots.len() == target.slots.len() {
+        // Which slots cost the most IoU: each set to its true value alone.
+        let now = iou_of(&result.x);
+        let mut gains: Vec<(f64, usize)> = (0..base.slots.len())
+            .filter(|&i| (result.x[i] - target.slots[i].value).abs() > 1e-9)
+            .map(|i| {
+                let mut x = result.x.clone();
+                x[i] = target.slots[i].value;
+                (iou_of(&x) - now, i)
+            })
+            .collect();
+        gains.sort_by(|a, b| b.0.total_cmp(&a.0));
+        for (g, i) in gains.iter().take(6) {
+            eprintln!(
+                "  blame {:24} fit {:8.2} target {:8.2} IoU +{g:.3}",
+                base.slots[*i].name, result.x[*i], target.slots[*i].value
+            );
+        }
+    }
     if let Ok(dir) = std::env::var("GALLERY") {
         let mut imgs = Vec::new();
         for (c, t) in cams.iter().zip(&targets) {
