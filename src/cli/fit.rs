@@ -70,8 +70,9 @@ pub struct Args {
     /// Standard deviation of that blur, pixels.
     #[arg(long, default_value_t = 1.0)]
     blur: f64,
-    /// Weight of shading against the foreground mask.
-    #[arg(long, default_value_t = 0.5)]
+    /// Weight of shading against the foreground mask (boards, drawer fronts and creases
+    /// inside the outline show only by shading).
+    #[arg(long, default_value_t = 1.0)]
     shading: f64,
     /// Coarse-to-fine levels: the first half of the rounds compares images pooled 2× per
     /// level, one level finer at a time, so parts far from their place still feel it.

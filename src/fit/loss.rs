@@ -32,7 +32,7 @@ impl Default for LossSpec {
         LossSpec {
             sharpen: 0.2,
             blur: 1.0,
-            shading: 0.5,
+            shading: 1.0,
             level: 0,
         }
     }

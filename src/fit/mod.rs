@@ -700,6 +700,7 @@ pub fn fit(
     };
     let mut round = 0;
     for stage in stages {
+        let start_look = look.clone();
         let (mut best_x, mut best_steps) = run_stage(
             backend,
             progress,
@@ -710,16 +711,13 @@ pub fn fit(
             &mut look,
         );
         if let Some(damped) = rerun {
-            let mut look_b = look.clone();
+            let mut look_b = start_look;
             let (xb, steps_b) = run_stage(backend, progress, stage, &x, damped, round, &mut look_b);
-            let mut look_a = look.clone();
-            let la = final_loss(backend, &best_x, &mut look_a);
+            let la = final_loss(backend, &best_x, &mut look);
             let lb = final_loss(backend, &xb, &mut look_b);
-            (look, best_x, best_steps) = if lb < la {
-                (look_b, xb, steps_b)
-            } else {
-                (look_a, best_x, best_steps)
-            };
+            if lb < la {
+                (look, best_x, best_steps) = (look_b, xb, steps_b);
+            }
         }
         curve.extend(best_steps);
         x = best_x;
