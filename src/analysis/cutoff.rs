@@ -148,6 +148,15 @@ mod tests {
         assert_eq!(c.keep, 20, "{c:?}");
     }
 
+    /// A curve from 0 rising by `step` for `n` steps, then to `last`, then five points
+    /// from `jump` on, 0.1 apart.
+    fn steps_then_jump(n: usize, step: f64, last: f64, jump: f64) -> Vec<f64> {
+        let mut curve: Vec<f64> = (0..=n).map(|i| step * i as f64).collect();
+        curve.push(last);
+        curve.extend((0..5).map(|i| jump + 0.1 * i as f64));
+        curve
+    }
+
     #[test]
     fn keeps_everything_when_nothing_fights() {
         let curve: Vec<f64> = (0..30).map(|i| 1e-6 * i as f64).collect();
@@ -158,14 +167,7 @@ mod tests {
     #[test]
     fn under_noise_the_step_into_the_jump_is_not_kept() {
         // Every step costs about 0.01 (noise); step 21 costs 0.05 and step 22 jumps.
-        let mut curve = vec![0.0];
-        for i in 1..=20 {
-            curve.push(0.01 * i as f64);
-        }
-        curve.push(0.25);
-        for i in 0..5 {
-            curve.push(0.6 + 0.1 * i as f64);
-        }
+        let curve = steps_then_jump(20, 0.01, 0.25, 0.6);
         let c = cutoff(&curve, 0.01, usize::MAX);
         assert_eq!(c.keep, 20, "{c:?}");
         assert_eq!(cutoff(&curve, 0.01, 15).keep, 15);
@@ -175,14 +177,7 @@ mod tests {
     fn a_step_within_the_noise_distortion_is_never_an_outlier() {
         // Steps of 0.001, then one of 0.005 (five times the typical step, but below the
         // 0.01 the noise explains), then the jump: the 0.005 step is kept.
-        let mut curve = vec![0.0];
-        for i in 1..=10 {
-            curve.push(0.001 * i as f64);
-        }
-        curve.push(0.015);
-        for i in 0..5 {
-            curve.push(0.4 + 0.1 * i as f64);
-        }
+        let curve = steps_then_jump(10, 0.001, 0.015, 0.4);
         let c = cutoff(&curve, 0.01, usize::MAX);
         assert_eq!(c.keep, 11, "{c:?}");
     }

@@ -251,15 +251,15 @@ pub fn run_case(
         let fitted = fitted_model(base_path, &base, x);
         reparamc::geom::iou((&fitted.parts, &fitted.csg), (&target.parts, &target.csg))
     };
+    let iou = iou_of(&result.x);
     if std::env::var("BLAME").is_ok() && base.slots.len() == target.slots.len() {
         // Which slots cost the most IoU: each set to its true value alone.
-        let now = iou_of(&result.x);
         let mut gains: Vec<(f64, usize)> = (0..base.slots.len())
             .filter(|&i| (result.x[i] - target.slots[i].value).abs() > 1e-9)
             .map(|i| {
                 let mut x = result.x.clone();
                 x[i] = target.slots[i].value;
-                (iou_of(&x) - now, i)
+                (iou_of(&x) - iou, i)
             })
             .collect();
         gains.sort_by(|a, b| b.0.total_cmp(&a.0));
@@ -300,7 +300,7 @@ pub fn run_case(
     Outcome {
         case: case.clone(),
         iou_start: iou_of(&problem.x0),
-        iou: iou_of(&result.x),
+        iou,
         loss_start: result.start_loss.iter().sum(),
         loss_end: result.end_loss.iter().sum(),
         seconds,
