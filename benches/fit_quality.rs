@@ -6,11 +6,12 @@
 //! Environment: `FIT_QUALITY_SIZE` (pixels, default 256), `FIT_QUALITY_CASES` (comma-separated
 //! substrings of `model/variant` to run), `FIT_QUALITY_GPU=1` to fit with the wgpu backend.
 //! For experiments, the table's settings can be overridden: `FIT_SHADING`, `FIT_LAMBDA`,
-//! `FIT_POLISH`, `FIT_ROUNDS`, `FIT_LEVELS`, `FIT_SIGMA_END`, `FIT_DAMPED` (Adam's floor in
-//! the rerun, 0: none), and `FIT_ALBEDO`, `FIT_PROPORTIONS`, `FIT_RELATIVE` (0 or 1); `WARM`
-//! and `SCALE` set the rounds of the structural and stretch stages. `SLOTS`, `TRUTH`,
-//! `TRACE`, `BLAME` (the slots whose true value alone gains most IoU) and `GALLERY=dir` print
-//! or draw more about each fit; `FROM_TRUTH` starts each fit at the true variant.
+//! `FIT_POLISH`, `FIT_SETTLE`, `FIT_ROUNDS`, `FIT_LEVELS`, `FIT_SIGMA_END`, `FIT_DAMPED`
+//! (Adam's floor in the rerun, 0: none), and `FIT_ALBEDO`, `FIT_PROPORTIONS`,
+//! `FIT_RELATIVE` (0 or 1); `WARM` and `SCALE` set the rounds of the structural and stretch
+//! stages. `SLOTS`, `TRUTH`, `TRACE`, `BLAME` (the slots whose true value alone gains most
+//! IoU) and `GALLERY=dir` print or draw more about each fit; `FROM_TRUTH` starts each fit
+//! at the true variant.
 
 #[path = "../tests/fit_support/quality.rs"]
 mod quality;
@@ -27,6 +28,9 @@ fn options_from_env() -> FitOptions {
     }
     if let Some(v) = get("FIT_LAMBDA") {
         o.lambda = v;
+    }
+    if let Some(v) = get("FIT_SETTLE") {
+        o.settle = v;
     }
     if let Some(v) = get("FIT_POLISH") {
         o.polish = v as usize;

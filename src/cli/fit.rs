@@ -86,6 +86,10 @@ pub struct Args {
     /// faces hidden behind other parts).
     #[arg(long, default_value_t = 0)]
     polish: usize,
+    /// In each stage's last round, lower the learning rate linearly by this fraction so
+    /// the stage ends at rest (0: the paper's constant rate; the quality table uses 0.9).
+    #[arg(long, default_value_t = 0.0, value_parser = fraction)]
+    settle: f64,
     /// Skip the opening search over the model's stretch along each axis (it brings a
     /// model that is far from the pictures' proportions within reach of the gradients).
     #[arg(long)]
@@ -130,6 +134,14 @@ fn same_file(a: &Path, b: &Path) -> bool {
     match (std::fs::canonicalize(a), std::fs::canonicalize(b)) {
         (Ok(x), Ok(y)) => x == y,
         _ => false,
+    }
+}
+
+/// A number from 0 to 1 (clap reports the error with the flag's name).
+fn fraction(text: &str) -> Result<f64, String> {
+    match text.trim().parse::<f64>() {
+        Ok(v) if (0.0..=1.0).contains(&v) => Ok(v),
+        _ => Err(format!("`{text}` is not a number from 0 to 1")),
     }
 }
 
@@ -233,6 +245,7 @@ pub fn run(args: Args) -> ExitCode {
         levels: args.levels,
         relative_steps: args.relative_steps,
         polish: args.polish,
+        settle: args.settle,
         proportions: !args.no_proportions,
         per_item_albedo: !args.one_colour,
         damped_rerun: (!args.single_run).then_some(reparamc::fit::DAMPED_FLOOR),

@@ -16,12 +16,16 @@ use std::time::Instant;
 
 /// The settings of the quality table: Adam (the paper's SGD needs many more rounds on
 /// targets this far from the base), the paper's loss, 10 rounds of 30 iterations, the
-/// first half warm (one round stretching the model, then the structural subspace).
+/// first half warm (one round stretching the model, then the structural subspace); each
+/// stage's last round settles, and two sweeps of face moves finish (thin boards the
+/// gradient leaves a little thick).
 pub fn table_options() -> FitOptions {
     FitOptions {
         optimizer: Optimizer::adam(),
         lr: 0.01,
         rounds: 10,
+        settle: 0.9,
+        polish: 2,
         ..FitOptions::default()
     }
 }
