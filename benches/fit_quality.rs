@@ -11,7 +11,8 @@
 //! `FIT_RELATIVE` (0 or 1); `WARM` and `SCALE` set the rounds of the structural and stretch
 //! stages. `SLOTS`, `TRUTH`, `TRACE`, `BLAME` (the slots whose true value alone gains most
 //! IoU) and `GALLERY=dir` print or draw more about each fit; `FROM_TRUTH` starts each fit
-//! at the true variant.
+//! at the true variant; `SUPERSAMPLE=k` renders the targets at 2^k times the size and pools
+//! them (antialiased targets).
 
 #[path = "../tests/fit_support/quality.rs"]
 mod quality;

@@ -49,11 +49,16 @@ fn fit(target: &Path, out: &Path, extra: &[&str]) -> Output {
 
 /// A failed fit: non-zero exit, the message mentions every `needles`, no output written.
 fn fails(target: &Path, needles: &[&str]) {
+    fails_with(target, &[], needles);
+}
+
+/// [`fails`] with `extra` arguments.
+fn fails_with(target: &Path, extra: &[&str], needles: &[&str]) {
     let out = target.parent().unwrap().join(format!(
         "{}-fitted.scad",
         target.file_name().unwrap().to_string_lossy()
     ));
-    let o = fit(target, &out, &[]);
+    let o = fit(target, &out, extra);
     let err = stderr(&o);
     assert!(
         !o.status.success(),
@@ -161,6 +166,17 @@ fn bad_target_folders() {
     let small = reparamc::render::image::Rgb::new(20, 20, [1.0; 3]);
     std::fs::write(sizes.join("right.png"), small.encode_png()).unwrap();
     fails(&sizes, &["right.png", "20×20", "one size"]);
+    // Settings out of range name the flag.
+    fails_with(
+        &good,
+        &["--settle", "2"],
+        &["--settle", "not a number from 0 to 1"],
+    );
+    fails_with(
+        &good,
+        &["--sigma", "2,-1"],
+        &["--sigma", "two positive numbers"],
+    );
 }
 
 #[test]

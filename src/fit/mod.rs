@@ -59,10 +59,11 @@ pub struct FitOptions {
     pub proportions: bool,
     /// Sweeps of face moves after the gradient rounds (see [`polish`]); 0: none.
     pub polish: usize,
-    /// In the last round of each stage the learning rate falls linearly from `lr` to
-    /// `(1 − settle)·lr`, so the stage ends at rest rather than wherever constant steps
-    /// left it (Adam's steps stay near `lr` however close it is; on a 2.5 mm desk top that
-    /// is a visible error). 0: the paper's constant rate.
+    /// In the last round of each stage the learning rate falls linearly by this fraction
+    /// of `lr` over the round (see [`optimize::round_rate`]), so the stage ends almost at
+    /// rest rather than wherever constant steps left it (Adam's steps stay near `lr`
+    /// however close it is; on a 2.5 mm desk top that is a visible error). 0: the paper's
+    /// constant rate.
     pub settle: f64,
     /// With Adam: every stage runs a second time from the same start with Adam's `floor`
     /// at this value, and the run with the lower final loss goes on to the next stage.
@@ -654,11 +655,8 @@ pub fn fit(
                     *g += r;
                 }
                 let gy = space.grad_y(&gx);
-                let lr = if round + 1 == round0 + stage.rounds {
-                    opts.lr * (1.0 - opts.settle * it as f64 / opts.iterations as f64)
-                } else {
-                    opts.lr
-                };
+                let last = round + 1 == round0 + stage.rounds;
+                let lr = optimize::round_rate(opts.lr, opts.settle, last, it, opts.iterations);
                 let mut delta = state.step(&gy, lr);
                 let big = delta.iter().fold(0.0f64, |a, d| a.max(d.abs()));
                 if big > opts.max_step && big.is_finite() {

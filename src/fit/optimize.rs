@@ -187,6 +187,17 @@ impl Space {
 }
 
 /// An orthonormal basis of the column space of `m` (Gram–Schmidt via SVD's left vectors).
+/// The learning rate of step `it` (from 0) of the `iterations` in a round: `lr`, except in
+/// a stage's last round, where it falls linearly, `lr·(1 − settle·it/iterations)`, so the
+/// stage ends almost at rest.
+pub fn round_rate(lr: f64, settle: f64, last_round: bool, it: usize, iterations: usize) -> f64 {
+    if last_round {
+        lr * (1.0 - settle * it as f64 / iterations.max(1) as f64)
+    } else {
+        lr
+    }
+}
+
 fn orthonormal_columns(m: &DMatrix<f64>) -> DMatrix<f64> {
     let svd = m.clone().svd(true, false);
     let Some(u) = svd.u else {
@@ -257,6 +268,19 @@ mod tests {
         assert!(ratio > 1e-3 && ratio < 3e-3, "{ratio}");
         assert_eq!(Optimizer::sgd().damped(0.05), None);
         assert_eq!(Optimizer::adam().damped(0.0), None);
+    }
+
+    #[test]
+    fn a_settling_round_ends_at_the_settled_rate() {
+        let rates: Vec<f64> = (0..30)
+            .map(|it| round_rate(0.01, 0.9, true, it, 30))
+            .collect();
+        assert_eq!(rates[0], 0.01);
+        assert!((rates[29] - 0.01 * (1.0 - 0.9 * 29.0 / 30.0)).abs() < 1e-12);
+        assert!(rates.windows(2).all(|w| w[1] < w[0]));
+        // Other rounds, and no settling, keep the rate.
+        assert!((0..30).all(|it| round_rate(0.01, 0.9, false, it, 30) == 0.01));
+        assert!((0..30).all(|it| round_rate(0.01, 0.0, true, it, 30) == 0.01));
     }
 
     #[test]

@@ -172,12 +172,25 @@ pub fn run_case(
         );
     }
     let cams = case_cameras(&base, &target, size, views);
+    // `SUPERSAMPLE=k` (experiments): targets rendered at 2^k times the size and pooled, so
+    // edges are antialiased as in photographs and generated pictures.
+    let ss: u32 = std::env::var("SUPERSAMPLE")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(0);
     let targets: Vec<Target> = cams
         .iter()
         .map(|c| {
-            let img = openscad::render(&case.target, c, &OpenScadRender::default())
+            let mut big = c.clone();
+            big.width <<= ss;
+            big.height <<= ss;
+            let img = openscad::render(&case.target, &big, &OpenScadRender::default())
                 .unwrap_or_else(|e| panic!("{e}"));
-            Target::from_rgb(&img)
+            let mut t = Target::from_rgb(&img);
+            for _ in 0..ss {
+                t = t.pooled();
+            }
+            t
         })
         .collect();
     let problem = Parametric::new(&base);
