@@ -645,6 +645,7 @@ pub fn fit(
         for round in round0..round0 + stage.rounds {
             let sigma = sigma_at(round);
             let level = level_at(round);
+            let last = round + 1 == round0 + stage.rounds;
             refit_shades(backend, &space.x(&y), look);
             for it in 0..opts.iterations {
                 let xs = space.x(&y);
@@ -655,7 +656,6 @@ pub fn fit(
                     *g += r;
                 }
                 let gy = space.grad_y(&gx);
-                let last = round + 1 == round0 + stage.rounds;
                 let lr = optimize::round_rate(opts.lr, opts.settle, last, it, opts.iterations);
                 let mut delta = state.step(&gy, lr);
                 let big = delta.iter().fold(0.0f64, |a, d| a.max(d.abs()));

@@ -186,7 +186,6 @@ impl Space {
     }
 }
 
-/// An orthonormal basis of the column space of `m` (Gram–Schmidt via SVD's left vectors).
 /// The learning rate of step `it` (from 0) of the `iterations` in a round: `lr`, except in
 /// a stage's last round, where it falls linearly, `lr·(1 − settle·it/iterations)`, so the
 /// stage ends almost at rest.
@@ -198,6 +197,7 @@ pub fn round_rate(lr: f64, settle: f64, last_round: bool, it: usize, iterations:
     }
 }
 
+/// An orthonormal basis of the column space of `m` (Gram–Schmidt via SVD's left vectors).
 fn orthonormal_columns(m: &DMatrix<f64>) -> DMatrix<f64> {
     let svd = m.clone().svd(true, false);
     let Some(u) = svd.u else {
