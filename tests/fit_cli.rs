@@ -88,6 +88,10 @@ fn render_then_fit_round_trip() {
             report.to_str().unwrap(),
             "--gallery",
             gallery.to_str().unwrap(),
+            "--border",
+            "0.25",
+            "--refine",
+            "1",
         ],
     );
     assert!(o.status.success(), "{}", stderr(&o));
@@ -171,6 +175,11 @@ fn bad_target_folders() {
         &good,
         &["--settle", "2"],
         &["--settle", "not a number from 0 to 1"],
+    );
+    fails_with(
+        &good,
+        &["--border", "1.5"],
+        &["--border", "not a number from 0 to 1"],
     );
     fails_with(
         &good,

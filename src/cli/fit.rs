@@ -86,6 +86,14 @@ pub struct Args {
     /// faces hidden behind other parts).
     #[arg(long, default_value_t = 0)]
     polish: usize,
+    /// After the face moves, sweeps of single-number and single-face moves of a pixel or
+    /// less, judged with hard edges (brings edges onto the pictures' own pixels).
+    #[arg(long, default_value_t = 0)]
+    refine: usize,
+    /// The pictures show the whole object: surround each with a border of background this
+    /// fraction of its height wide, so parts that reach out of the pictures are drawn back.
+    #[arg(long, default_value_t = 0.0, value_parser = fraction)]
+    border: f64,
     /// In each stage's last round, lower the learning rate linearly by this fraction so
     /// the stage ends at rest (0: the paper's constant rate; the quality table uses 0.9).
     #[arg(long, default_value_t = 0.0, value_parser = fraction)]
@@ -240,12 +248,14 @@ pub fn run(args: Args) -> ExitCode {
             sharpen: args.sharpen,
             blur: args.blur,
             shading: args.shading,
-            level: 0,
+            ..LossSpec::default()
         },
         levels: args.levels,
         relative_steps: args.relative_steps,
         polish: args.polish,
         settle: args.settle,
+        refine: args.refine,
+        border: args.border,
         proportions: !args.no_proportions,
         per_item_albedo: !args.one_colour,
         damped_rerun: (!args.single_run).then_some(reparamc::fit::DAMPED_FLOOR),

@@ -25,6 +25,11 @@ pub struct LossSpec {
     /// Compare after this many 2×2 average poolings (0: at full resolution). Coarse levels
     /// see parts that are far from where they should be.
     pub level: u32,
+    /// The share of each compared image that is the picture itself, the rest being the
+    /// border of background the fit adds ([`super::FitOptions::border`]): the means are
+    /// taken over the picture's pixels, so a border does not dilute the loss against the
+    /// regulariser.
+    pub picture_share: f64,
 }
 
 impl Default for LossSpec {
@@ -34,6 +39,7 @@ impl Default for LossSpec {
             blur: 1.0,
             shading: 1.0,
             level: 0,
+            picture_share: 1.0,
         }
     }
 }
@@ -123,6 +129,30 @@ impl Target {
             m,
             s,
             grey,
+            background: self.background,
+        }
+    }
+
+    /// The target inside a frame of background `px` pixels wide on every side.
+    pub fn with_border(&self, px: u32) -> Target {
+        if px == 0 {
+            return self.clone();
+        }
+        let (w, h) = (self.width + 2 * px, self.height + 2 * px);
+        let pad = |c: &[f32]| -> Vec<f32> {
+            let mut out = vec![0.0; (w * h) as usize];
+            for (y, row) in c.chunks(self.width as usize).enumerate() {
+                let at = ((y as u32 + px) * w + px) as usize;
+                out[at..at + row.len()].copy_from_slice(row);
+            }
+            out
+        };
+        Target {
+            width: w,
+            height: h,
+            m: pad(&self.m),
+            s: pad(&self.s),
+            grey: pad(&self.grey),
             background: self.background,
         }
     }
@@ -295,7 +325,7 @@ pub fn view_loss(render: &SoftImage, target: &Target, spec: &LossSpec, grad: boo
         (w, h) = (w2, h2);
         sizes.push((w, h));
     }
-    let n = (w * h) as f64;
+    let n = (w * h) as f64 * spec.picture_share;
     let qm = sharpen(&rm, w, h, spec);
     let qs = sharpen(&rs, w, h, spec);
     let sm: f64 = qm.iter().map(|&v| (v as f64) * (v as f64)).sum();
@@ -329,6 +359,35 @@ pub fn view_loss(render: &SoftImage, target: &Target, spec: &LossSpec, grad: boo
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_border_is_background_around_the_same_picture() {
+        let (w, h) = (3u32, 2u32);
+        let m: Vec<f32> = vec![1.0, 0.5, 0.0, 0.25, 1.0, 1.0];
+        let t = Target {
+            width: w,
+            height: h,
+            s: m.iter().map(|v| v * 0.5).collect(),
+            grey: vec![0.5; 6],
+            m,
+            background: [1.0; 3],
+        };
+        let b = t.with_border(2);
+        assert_eq!((b.width, b.height), (7, 6));
+        for y in 0..6 {
+            for x in 0..7 {
+                let k = y * 7 + x;
+                let inside = (2..5).contains(&x) && (2..4).contains(&y);
+                let want = if inside {
+                    t.m[(y - 2) * 3 + x - 2]
+                } else {
+                    0.0
+                };
+                assert_eq!(b.m[k], want, "({x}, {y})");
+                assert_eq!(b.s[k], want * 0.5, "({x}, {y})");
+            }
+        }
+    }
 
     #[test]
     fn sharpen_is_symmetric() {

@@ -8,9 +8,13 @@
 //! squares on the pixels both show as surface) and the silhouettes' softness `σ` steps down
 //! geometrically from `sigma.0` to `sigma.1` pixels, so early rounds see far and later
 //! rounds see sharp. With Adam, each stage also runs damped from the same start and the
-//! run with the lower loss goes on ([`FitOptions::damped_rerun`]).
+//! run with the lower loss goes on ([`FitOptions::damped_rerun`]). Optional finishing
+//! passes move single faces ([`polish`]) and then single numbers and faces by a pixel or
+//! less on hard edges ([`polish::refine`]); pictures may be seen inside a border of
+//! background ([`frame`]).
 
 pub mod albedo;
+pub mod frame;
 pub mod loss;
 pub mod optimize;
 pub mod polish;
@@ -59,6 +63,13 @@ pub struct FitOptions {
     pub proportions: bool,
     /// Sweeps of face moves after the gradient rounds (see [`polish`]); 0: none.
     pub polish: usize,
+    /// Sweeps of slot and face moves on hard edges after the face moves (see
+    /// [`polish::refine`]); 0: none.
+    pub refine: usize,
+    /// The pictures show the whole object: the fit sees each picture inside a frame of
+    /// background this fraction of its height wide, so that parts reaching out of the
+    /// pictures are drawn back in rather than left unseen. 0: only the pictures.
+    pub border: f64,
     /// In the last round of each stage the learning rate falls linearly by this fraction
     /// of `lr` over the round (see [`optimize::round_rate`]), so the stage ends almost at
     /// rest rather than wherever constant steps left it (Adam's steps stay near `lr`
@@ -100,6 +111,8 @@ impl Default for FitOptions {
             min_extent: 0.002,
             relative_steps: false,
             polish: 0,
+            refine: 0,
+            border: 0.0,
             settle: 0.0,
             damped_rerun: Some(DAMPED_FLOOR),
             proportions: true,
@@ -111,6 +124,9 @@ impl Default for FitOptions {
 
 /// Adam's `floor` in the damped rerun of every stage ([`FitOptions::damped_rerun`]).
 pub const DAMPED_FLOOR: f64 = 0.05;
+
+/// Silhouette softness of [`polish::refine`]'s loss, in pixels: hard but for a sliver.
+const HARD_SIGMA: f64 = 0.02;
 
 /// Floor of relative step scales, in units of the model's size.
 const RELATIVE_FLOOR: f64 = 0.05;
@@ -459,6 +475,16 @@ pub fn fit(
     progress: &mut dyn FnMut(&Progress),
 ) -> Result<FitResult, FitError> {
     check(problem, cameras, targets, backend)?;
+    let (cameras, targets, share) = frame::bordered(cameras, targets, opts.border);
+    let (cameras, targets) = (&cameras[..], &targets[..]);
+    let bordered = FitOptions {
+        loss: LossSpec {
+            picture_share: share,
+            ..opts.loss
+        },
+        ..opts.clone()
+    };
+    let opts = &bordered;
     let mut fixed;
     let problem = if problem.rings.is_empty() {
         fixed = problem.clone();
@@ -738,6 +764,24 @@ pub fn fit(
             image_loss(backend, 0, x, opts.sigma.1, &look, false).total() + reg(x).0
         };
         x = polish(problem, x, opts.polish, &mut |x| eval(backend, x), &valid);
+        refit_shades(backend, &x, &mut look);
+    }
+    if opts.refine > 0 {
+        let pixel = cameras
+            .iter()
+            .map(Camera::pixel_size)
+            .fold(f64::INFINITY, f64::min);
+        let eval = |backend: &mut dyn Backend, x: &[f64]| -> f64 {
+            image_loss(backend, 0, x, HARD_SIGMA, &look, false).total() + reg(x).0
+        };
+        x = polish::refine(
+            problem,
+            x,
+            pixel,
+            opts.refine,
+            &mut |x| eval(backend, x),
+            &valid,
+        );
         refit_shades(backend, &x, &mut look);
     }
     let end_loss = image_loss(backend, 0, &x, opts.sigma.1, &look, false).per_view;

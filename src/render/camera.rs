@@ -292,6 +292,32 @@ impl Camera {
         }
     }
 
+    /// The same view seen through an image `px` pixels wider on every side: the field of
+    /// view grows so that everything keeps its place and size in pixels, shifted by `px`.
+    pub fn with_border(&self, px: u32) -> Camera {
+        if px == 0 {
+            return self.clone();
+        }
+        let grow = (self.height + 2 * px) as f64 / self.height as f64;
+        let half = (self.fov.to_radians() / 2.0).tan() * grow;
+        Camera {
+            width: self.width + 2 * px,
+            height: self.height + 2 * px,
+            fov: 2.0 * half.atan().to_degrees(),
+            ..self.clone()
+        }
+    }
+
+    /// World units per pixel at the camera's center (its finest detail there).
+    pub fn pixel_size(&self) -> f64 {
+        let f = self.frame();
+        if f.ortho {
+            1.0 / f.focal
+        } else {
+            norm(sub(self.eye, self.center)) / f.focal
+        }
+    }
+
     /// The same view with another image size (the field of view is kept).
     pub fn with_size(&self, width: u32, height: u32) -> Camera {
         Camera {
@@ -578,6 +604,28 @@ mod tests {
 
     fn close(a: Vec3, b: Vec3) -> bool {
         (0..3).all(|i| (a[i] - b[i]).abs() < 1e-9)
+    }
+
+    #[test]
+    fn a_border_keeps_every_point_on_its_pixel() {
+        for projection in [Projection::Perspective, Projection::Orthographic] {
+            let c = Camera::from_openscad(
+                "t",
+                &[1.0, 2.0, 3.0, 60.0, 0.0, 30.0, 50.0],
+                projection,
+                64,
+                48,
+            )
+            .unwrap();
+            let b = c.with_border(8);
+            assert_eq!((b.width, b.height), (80, 64));
+            let (f, g) = (c.frame(), b.frame());
+            for p in [[0.0, 0.0, 0.0], [5.0, -3.0, 7.0], [-4.0, 6.0, 1.0]] {
+                let (u, v) = (f.project(p).unwrap().0, g.project(p).unwrap().0);
+                assert!((v[0] - u[0] - 8.0).abs() < 1e-9 && (v[1] - u[1] - 8.0).abs() < 1e-9);
+            }
+            assert!((b.pixel_size() - c.pixel_size()).abs() < 1e-12 * c.pixel_size());
+        }
     }
 
     #[test]
