@@ -6,13 +6,17 @@
 //! Environment: `FIT_QUALITY_SIZE` (pixels, default 256), `FIT_QUALITY_CASES` (comma-separated
 //! substrings of `model/variant` to run), `FIT_QUALITY_GPU=1` to fit with the wgpu backend.
 //! For experiments, the table's settings can be overridden: `FIT_SHADING`, `FIT_LAMBDA`,
-//! `FIT_POLISH`, `FIT_SETTLE`, `FIT_ROUNDS`, `FIT_LEVELS`, `FIT_SIGMA_END`, `FIT_DAMPED`
-//! (Adam's floor in the rerun, 0: none), and `FIT_ALBEDO`, `FIT_PROPORTIONS`,
-//! `FIT_RELATIVE` (0 or 1); `WARM` and `SCALE` set the rounds of the structural and stretch
-//! stages. `SLOTS`, `TRUTH`, `TRACE`, `BLAME` (the slots whose true value alone gains most
-//! IoU) and `GALLERY=dir` print or draw more about each fit; `FROM_TRUTH` starts each fit
-//! at the true variant; `SUPERSAMPLE=k` renders the targets at 2^k times the size and pools
-//! them (antialiased targets).
+//! `FIT_POLISH`, `FIT_REFINE`, `FIT_BORDER`, `FIT_SETTLE`, `FIT_ROUNDS`, `FIT_LEVELS`,
+//! `FIT_SIGMA_END`, `FIT_DAMPED` (Adam's floor in the rerun, 0: none), and `FIT_ALBEDO`,
+//! `FIT_PROPORTIONS`, `FIT_RELATIVE` (0 or 1); `WARM` and `SCALE` set the rounds of the
+//! structural and stretch stages; `FRAME_TARGET` frames the cameras on the variant alone
+//! instead of on the base and the variant together. `SLOTS` (or `SLOTS=d`: the slots more than d
+//! from the truth), `TRUTH` (the loss there, soft and hard), `TRACE`, `BLAME` (the slots
+//! whose true value alone gains most IoU, and the IoU with the first k of them set),
+//! `MISMATCH` (pixels whose hard coverage disagrees with the target's mask; with `GALLERY`
+//! also drawn) and `GALLERY=dir` print or draw more about each fit; `FROM_TRUTH` starts
+//! each fit at the true variant; `SUPERSAMPLE=k` renders the targets at 2^k times the size
+//! and pools them (antialiased targets).
 
 #[path = "../tests/fit_support/quality.rs"]
 mod quality;
@@ -35,6 +39,12 @@ fn options_from_env() -> FitOptions {
     }
     if let Some(v) = get("FIT_POLISH") {
         o.polish = v as usize;
+    }
+    if let Some(v) = get("FIT_REFINE") {
+        o.refine = v as usize;
+    }
+    if let Some(v) = get("FIT_BORDER") {
+        o.border = v;
     }
     if let Some(v) = get("FIT_ROUNDS") {
         o.rounds = v as usize;

@@ -134,16 +134,21 @@ fn union_bounds(a: ([f64; 3], [f64; 3]), b: Option<([f64; 3], [f64; 3])>) -> ([f
     }
 }
 
-/// The five cameras a case is seen from (framing the base and the variant).
+/// The five cameras a case is seen from, framing the base and the variant
+/// (`FRAME_TARGET`: the variant alone, as pictures of it would; then set `FIT_BORDER`).
 pub fn case_cameras(
     base: &reparamc::ir::Model,
     target: &reparamc::ir::Model,
     size: u32,
     views: usize,
 ) -> Vec<Camera> {
-    // Framing the base and the target: the start must be in view (framed on the target
-    // alone, a base that is much larger reaches out of the pictures and the fit is lost).
-    let (lo, hi) = union_bounds(base.bounds().unwrap(), target.bounds());
+    // Framed on the target alone, a base that is much larger reaches out of the pictures
+    // and parts out of every picture are lost unless the fit sees a border around them.
+    let (lo, hi) = if std::env::var("FRAME_TARGET").is_ok() {
+        target.bounds().unwrap()
+    } else {
+        union_bounds(base.bounds().unwrap(), target.bounds())
+    };
     default_views(lo, hi, views, size, size)
 }
 
@@ -223,32 +228,55 @@ pub fn run_case(
     let seconds = t0.elapsed().as_secs_f64();
     if std::env::var("TRUTH").is_ok() {
         // The loss at the true answer, for comparison with the fitted one.
-        let tp = Parametric::new(&target);
-        let t_opts = FitOptions {
-            rounds: 1,
-            iterations: 1,
-            ..opts.clone()
+        // And both with hard edges (the starting loss of a one-step fit from there).
+        let backend = &mut *backend;
+        let mut loss_at = |p: Parametric, sigma: f64| -> f64 {
+            let t_opts = FitOptions {
+                rounds: 1,
+                iterations: 1,
+                proportions: false,
+                polish: 0,
+                refine: 0,
+                damped_rerun: None,
+                sigma: (sigma, sigma),
+                ..opts.clone()
+            };
+            let r = fit(
+                &p,
+                &cams,
+                &targets,
+                &[reparamc::fit::Stage::slots(1)],
+                &mut *backend,
+                &t_opts,
+                &mut |_| {},
+            )
+            .unwrap();
+            r.start_loss.iter().sum::<f64>()
         };
-        let r = fit(
-            &tp,
-            &cams,
-            &targets,
-            &[reparamc::fit::Stage::slots(1)],
-            backend,
-            &t_opts,
-            &mut |_| {},
-        )
-        .unwrap();
+        let mut at_fit = Parametric::new(&base);
+        at_fit.x0 = result.x.clone();
         eprintln!(
-            "  loss at the truth {:.5}, at the fit {:.5}",
-            r.start_loss.iter().sum::<f64>(),
-            result.end_loss.iter().sum::<f64>()
+            "  loss at the truth {:.5}, at the fit {:.5}; hard edges: {:.5}, {:.5}",
+            loss_at(Parametric::new(&target), opts.sigma.1),
+            result.end_loss.iter().sum::<f64>(),
+            loss_at(Parametric::new(&target), 0.02),
+            loss_at(at_fit, 0.02),
         );
     }
-    if std::env::var("SLOTS").is_ok() && base.slots.len() == target.slots.len() {
+    if let Ok(v) = std::env::var("SLOTS") {
+        // `SLOTS=d`: the slots that ended more than d (default 0.3) from the truth (matched
+        // by name; a variant may have other slots).
+        let off: f64 = v.parse().unwrap_or(0.3);
         for (i, sl) in base.slots.iter().enumerate() {
-            let t = target.slots[i].value;
-            if (result.x[i] - t).abs() > 0.3 {
+            let Some(t) = target
+                .slots
+                .iter()
+                .find(|t| t.name == sl.name)
+                .map(|t| t.value)
+            else {
+                continue;
+            };
+            if (result.x[i] - t).abs() > off {
                 eprintln!(
                     "  {:24} base {:8.2} fit {:8.2} target {:8.2}",
                     sl.name, sl.value, result.x[i], t
@@ -280,12 +308,73 @@ pub fn run_case(
             })
             .collect();
         gains.sort_by(|a, b| b.0.total_cmp(&a.0));
-        for (g, i) in gains.iter().take(6) {
+        // And the IoU with the first k of them all set to the truth.
+        let mut x = result.x.clone();
+        for (g, i) in gains.iter().take(8) {
+            x[*i] = target.slots[*i].value;
             eprintln!(
-                "  blame {:24} fit {:8.2} target {:8.2} IoU +{g:.3}",
-                base.slots[*i].name, result.x[*i], target.slots[*i].value
+                "  blame {:24} fit {:8.2} target {:8.2} IoU +{g:.3} (with the above {:.3})",
+                base.slots[*i].name,
+                result.x[*i],
+                target.slots[*i].value,
+                iou_of(&x)
             );
         }
+    }
+    if std::env::var("MISMATCH").is_ok() {
+        // Pixels whose hard coverage disagrees with the target's mask, per view.
+        let tp = Parametric::new(&target);
+        let count = |p: &Parametric, x: &[f64], label: &str| -> Vec<usize> {
+            let scene = p.scene(x);
+            cams.iter()
+                .zip(&targets)
+                .map(|(c, t)| {
+                    let v = reparamc::render::soft::prepare_view(&scene, c, None);
+                    let (_, hard, _) = reparamc::render::soft::render_view(
+                        &scene,
+                        &v,
+                        None,
+                        reparamc::render::scene::DEFAULT_SHADE,
+                        false,
+                    );
+                    // Red: ours only; blue: the target's only (four times the size).
+                    let k = 4;
+                    let mut img =
+                        reparamc::render::image::Rgb::new(t.width * k, t.height * k, [1.0; 3]);
+                    for (i, (a, b)) in hard.mask().zip(&t.m).enumerate() {
+                        let (px, py) = (i as u32 % t.width, i as u32 / t.width);
+                        let colour = match (a, *b > 0.5) {
+                            (true, true) => [0.8; 3],
+                            (true, false) => [1.0, 0.0, 0.0],
+                            (false, true) => [0.0, 0.0, 1.0],
+                            _ => [1.0; 3],
+                        };
+                        for dy in 0..k {
+                            for dx in 0..k {
+                                img.data[((py * k + dy) * t.width * k + px * k + dx) as usize] =
+                                    colour;
+                            }
+                        }
+                    }
+                    if let Ok(dir) = std::env::var("GALLERY") {
+                        let path = PathBuf::from(dir).join(format!(
+                            "{}_{}_{}_{label}.png",
+                            case.model, case.variant, c.name
+                        ));
+                        std::fs::write(path, img.encode_png()).unwrap();
+                    }
+                    hard.mask()
+                        .zip(&t.m)
+                        .filter(|(a, b)| *a != (**b > 0.5))
+                        .count()
+                })
+                .collect()
+        };
+        eprintln!(
+            "  mask mismatch at the fit {:?}, at the truth {:?}",
+            count(&problem, &result.x, "fit"),
+            count(&tp, &tp.x0, "truth")
+        );
     }
     if let Ok(dir) = std::env::var("GALLERY") {
         let mut imgs = Vec::new();
