@@ -10,9 +10,9 @@
 //! `FIT_SIGMA_END`, `FIT_DAMPED` (Adam's floor in the rerun, 0: none), and `FIT_ALBEDO`,
 //! `FIT_PROPORTIONS`, `FIT_RELATIVE` (0 or 1); `WARM` and `SCALE` set the rounds of the
 //! structural and stretch stages; `FRAME_TARGET` frames the cameras on the variant alone
-//! instead of on the base and the variant together. `SLOTS` (or `SLOTS=d`: the slots more than d
-//! from the truth), `TRUTH` (the loss there, soft and hard), `TRACE`, `BLAME` (the slots
-//! whose true value alone gains most IoU, and the IoU with the first k of them set),
+//! instead of on the base and the variant together. `SLOTS` (or `SLOTS=d`: the slots more
+//! than d from the truth), `TRUTH` (the loss there, soft and hard), `TRACE`, `BLAME` (the
+//! slots whose true value alone gains most IoU, and the IoU with the first k of them set),
 //! `MISMATCH` (pixels whose hard coverage disagrees with the target's mask; with `GALLERY`
 //! also drawn) and `GALLERY=dir` print or draw more about each fit; `FROM_TRUTH` starts
 //! each fit at the true variant; `SUPERSAMPLE=k` renders the targets at 2^k times the size

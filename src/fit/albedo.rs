@@ -267,6 +267,7 @@ mod tests {
             s,
             grey,
             background: [1.0; 3],
+            border: 0,
         };
         (hard, t)
     }
@@ -362,6 +363,7 @@ mod tests {
                     s: grey.clone(),
                     grey,
                     background: [1.0; 3],
+                    border: 0,
                 }
             })
             .collect();

@@ -16,17 +16,13 @@ fn border_px(camera: &Camera, fraction: f64) -> u32 {
 }
 
 /// The cameras and targets seen through a border `fraction` of each picture's height
-/// wide, and the share of the (first) bordered image that is the picture itself.
+/// wide (each target records its border, so the loss can take its means over the picture).
 pub fn bordered(
     cameras: &[Camera],
     targets: &[Target],
     fraction: f64,
-) -> (Vec<Camera>, Vec<Target>, f64) {
+) -> (Vec<Camera>, Vec<Target>) {
     let px: Vec<u32> = cameras.iter().map(|c| border_px(c, fraction)).collect();
-    let share = cameras.first().map_or(1.0, |c| {
-        let b = 2 * px[0];
-        (c.width * c.height) as f64 / ((c.width + b) * (c.height + b)) as f64
-    });
     (
         cameras
             .iter()
@@ -38,6 +34,5 @@ pub fn bordered(
             .zip(&px)
             .map(|(t, &b)| t.with_border(b))
             .collect(),
-        share,
     )
 }

@@ -25,11 +25,6 @@ pub struct LossSpec {
     /// Compare after this many 2×2 average poolings (0: at full resolution). Coarse levels
     /// see parts that are far from where they should be.
     pub level: u32,
-    /// The share of each compared image that is the picture itself, the rest being the
-    /// border of background the fit adds ([`super::FitOptions::border`]): the means are
-    /// taken over the picture's pixels, so a border does not dilute the loss against the
-    /// regulariser.
-    pub picture_share: f64,
 }
 
 impl Default for LossSpec {
@@ -39,7 +34,6 @@ impl Default for LossSpec {
             blur: 1.0,
             shading: 1.0,
             level: 0,
-            picture_share: 1.0,
         }
     }
 }
@@ -56,6 +50,9 @@ pub struct Target {
     pub grey: Vec<f32>,
     /// The background colour found at the border.
     pub background: [f32; 3],
+    /// Pixels of background the fit put around the picture on every side
+    /// ([`super::FitOptions::border`]); 0 for a picture as given.
+    pub border: u32,
 }
 
 /// Colour distance below which a pixel is background, and above which it is foreground,
@@ -93,6 +90,7 @@ impl Target {
             s,
             grey,
             background,
+            border: 0,
         }
     }
 
@@ -111,6 +109,7 @@ impl Target {
             s: img.s.clone(),
             grey,
             background: [1.0; 3],
+            border: 0,
         }
     }
 
@@ -130,6 +129,7 @@ impl Target {
             s,
             grey,
             background: self.background,
+            border: self.border / 2,
         }
     }
 
@@ -154,7 +154,14 @@ impl Target {
             s: pad(&self.s),
             grey: pad(&self.grey),
             background: self.background,
+            border: self.border + px,
         }
+    }
+
+    /// The share of the image that is the picture itself (1 without a border).
+    pub fn picture_share(&self) -> f64 {
+        let inner = |n: u32| n.saturating_sub(2 * self.border) as f64;
+        inner(self.width) * inner(self.height) / (self.width * self.height) as f64
     }
 
     /// Number of foreground pixels (coverage above one half).
@@ -308,7 +315,8 @@ pub fn unpool(img: &[f32], w: u32, h: u32) -> Vec<f32> {
 }
 
 /// `mean(sharpen(M − M_T)²) + w·mean(sharpen(S − S_T)²)` (after `spec.level` poolings) and
-/// its derivatives.
+/// its derivatives. The means are over the picture's own pixels: a border the fit added
+/// around it does not dilute the loss against the regulariser.
 pub fn view_loss(render: &SoftImage, target: &Target, spec: &LossSpec, grad: bool) -> ViewLoss {
     let (w0, h0) = (render.width, render.height);
     let mut rm: Vec<f32> = render.m.iter().zip(&target.m).map(|(a, b)| a - b).collect();
@@ -325,7 +333,7 @@ pub fn view_loss(render: &SoftImage, target: &Target, spec: &LossSpec, grad: boo
         (w, h) = (w2, h2);
         sizes.push((w, h));
     }
-    let n = (w * h) as f64 * spec.picture_share;
+    let n = (w * h) as f64 * target.picture_share();
     let qm = sharpen(&rm, w, h, spec);
     let qs = sharpen(&rs, w, h, spec);
     let sm: f64 = qm.iter().map(|&v| (v as f64) * (v as f64)).sum();
@@ -371,9 +379,12 @@ mod tests {
             grey: vec![0.5; 6],
             m,
             background: [1.0; 3],
+            border: 0,
         };
         let b = t.with_border(2);
         assert_eq!((b.width, b.height), (7, 6));
+        assert_eq!(b.picture_share(), 6.0 / 42.0);
+        assert_eq!(b.pooled().border, 1);
         for y in 0..6 {
             for x in 0..7 {
                 let k = y * 7 + x;

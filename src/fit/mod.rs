@@ -475,16 +475,8 @@ pub fn fit(
     progress: &mut dyn FnMut(&Progress),
 ) -> Result<FitResult, FitError> {
     check(problem, cameras, targets, backend)?;
-    let (cameras, targets, share) = frame::bordered(cameras, targets, opts.border);
+    let (cameras, targets) = frame::bordered(cameras, targets, opts.border);
     let (cameras, targets) = (&cameras[..], &targets[..]);
-    let bordered = FitOptions {
-        loss: LossSpec {
-            picture_share: share,
-            ..opts.loss
-        },
-        ..opts.clone()
-    };
-    let opts = &bordered;
     let mut fixed;
     let problem = if problem.rings.is_empty() {
         fixed = problem.clone();

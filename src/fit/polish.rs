@@ -116,16 +116,16 @@ pub fn refine(
     ok: &dyn Fn(&[f64]) -> bool,
 ) -> Vec<f64> {
     let mut best = loss(&x);
-    let shifts = |_: f64, _: f64| -> Vec<f64> {
-        REFINE_MOVES
-            .iter()
-            .flat_map(|f| [f * step, -f * step])
-            .collect()
-    };
+    let steps: Vec<f64> = REFINE_MOVES
+        .iter()
+        .flat_map(|f| [f * step, -f * step])
+        .collect();
+    // Faces move by the same steps whatever their part's extent.
+    let shifts = |_: f64, _: f64| steps.clone();
     for _ in 0..sweeps {
         let mut improved = false;
         for i in 0..x.len() {
-            let moves = shifts(0.0, 0.0).into_iter().map(|dv| {
+            let moves = steps.iter().map(|dv| {
                 let mut c = x.clone();
                 c[i] += dv;
                 c

@@ -337,31 +337,24 @@ pub fn run_case(
                         reparamc::render::scene::DEFAULT_SHADE,
                         false,
                     );
-                    // Red: ours only; blue: the target's only (four times the size).
-                    let k = 4;
-                    let mut img =
-                        reparamc::render::image::Rgb::new(t.width * k, t.height * k, [1.0; 3]);
-                    for (i, (a, b)) in hard.mask().zip(&t.m).enumerate() {
-                        let (px, py) = (i as u32 % t.width, i as u32 / t.width);
-                        let colour = match (a, *b > 0.5) {
-                            (true, true) => [0.8; 3],
-                            (true, false) => [1.0, 0.0, 0.0],
-                            (false, true) => [0.0, 0.0, 1.0],
-                            _ => [1.0; 3],
-                        };
-                        for dy in 0..k {
-                            for dx in 0..k {
-                                img.data[((py * k + dy) * t.width * k + px * k + dx) as usize] =
-                                    colour;
-                            }
-                        }
-                    }
                     if let Ok(dir) = std::env::var("GALLERY") {
+                        // Red: ours only; blue: the target's only (four times the size).
+                        let mut img =
+                            reparamc::render::image::Rgb::new(t.width, t.height, [1.0; 3]);
+                        for (px, (a, b)) in img.data.iter_mut().zip(hard.mask().zip(&t.m)) {
+                            *px = match (a, *b > 0.5) {
+                                (true, true) => [0.8; 3],
+                                (true, false) => [1.0, 0.0, 0.0],
+                                (false, true) => [0.0, 0.0, 1.0],
+                                _ => [1.0; 3],
+                            };
+                        }
                         let path = PathBuf::from(dir).join(format!(
                             "{}_{}_{}_{label}.png",
                             case.model, case.variant, c.name
                         ));
-                        std::fs::write(path, img.encode_png()).unwrap();
+                        let big = img.resize(4 * t.width, 4 * t.height);
+                        std::fs::write(path, big.encode_png()).unwrap();
                     }
                     hard.mask()
                         .zip(&t.m)
