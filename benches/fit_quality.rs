@@ -9,8 +9,9 @@
 //! `FIT_POLISH`, `FIT_REFINE`, `FIT_BORDER`, `FIT_SETTLE`, `FIT_ROUNDS`, `FIT_LEVELS`,
 //! `FIT_SIGMA_END`, `FIT_DAMPED` (Adam's floor in the rerun, 0: none), and `FIT_ALBEDO`,
 //! `FIT_PROPORTIONS`, `FIT_RELATIVE` (0 or 1); `WARM` and `SCALE` set the rounds of the
-//! structural and stretch stages; `FRAME_TARGET` frames the cameras on the variant alone
-//! instead of on the base and the variant together. `SLOTS` (or `SLOTS=d`: the slots more
+//! structural and stretch stages; `FRAME_UNION` frames the cameras on the base and the
+//! variant together instead of on the variant alone (with `FIT_BORDER=0`: the table before
+//! 2026-12-01, with `FIT_REFINE=0` as well). `SLOTS` (or `SLOTS=d`: the slots more
 //! than d from the truth), `TRUTH` (the loss there, soft and hard), `TRACE`, `BLAME` (the
 //! slots whose true value alone gains most IoU, and the IoU with the first k of them set),
 //! `MISMATCH` (pixels whose hard coverage disagrees with the target's mask; with `GALLERY`

@@ -17,8 +17,10 @@ use std::time::Instant;
 /// The settings of the quality table: Adam (the paper's SGD needs many more rounds on
 /// targets this far from the base), the paper's loss, 10 rounds of 30 iterations, the
 /// first half warm (one round stretching the model, then the structural subspace); each
-/// stage's last round settles, and two sweeps of face moves finish (thin boards the
-/// gradient leaves a little thick).
+/// stage's last round settles, two sweeps of face moves finish (thin boards the gradient
+/// leaves a little thick), and two of hard-edge refinement (edges a fraction of a pixel
+/// off). The pictures frame the variant, so the fit sees them inside a border of
+/// background: a part of the base outside every picture must still cost.
 pub fn table_options() -> FitOptions {
     FitOptions {
         optimizer: Optimizer::adam(),
@@ -26,6 +28,8 @@ pub fn table_options() -> FitOptions {
         rounds: 10,
         settle: 0.9,
         polish: 2,
+        refine: 2,
+        border: 0.125,
         ..FitOptions::default()
     }
 }
@@ -134,8 +138,9 @@ fn union_bounds(a: ([f64; 3], [f64; 3]), b: Option<([f64; 3], [f64; 3])>) -> ([f
     }
 }
 
-/// The five cameras a case is seen from, framing the base and the variant
-/// (`FRAME_TARGET`: the variant alone, as pictures of it would; then set `FIT_BORDER`).
+/// The five cameras a case is seen from, framing the variant alone, as pictures of it
+/// would (`FRAME_UNION`: the base and the variant together, as the table did until
+/// 2026-12-01; a variant much smaller than the base is then seen small).
 pub fn case_cameras(
     base: &reparamc::ir::Model,
     target: &reparamc::ir::Model,
@@ -143,11 +148,12 @@ pub fn case_cameras(
     views: usize,
 ) -> Vec<Camera> {
     // Framed on the target alone, a base that is much larger reaches out of the pictures
-    // and parts out of every picture are lost unless the fit sees a border around them.
-    let (lo, hi) = if std::env::var("FRAME_TARGET").is_ok() {
-        target.bounds().unwrap()
-    } else {
+    // and parts out of every picture are lost unless the fit sees a border around them
+    // (`table_options().border`).
+    let (lo, hi) = if std::env::var("FRAME_UNION").is_ok() {
         union_bounds(base.bounds().unwrap(), target.bounds())
+    } else {
+        target.bounds().unwrap()
     };
     default_views(lo, hi, views, size, size)
 }
