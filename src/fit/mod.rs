@@ -126,7 +126,7 @@ impl Default for FitOptions {
 pub const DAMPED_FLOOR: f64 = 0.05;
 
 /// Silhouette softness of [`polish::refine`]'s loss, in pixels: hard but for a sliver.
-const HARD_SIGMA: f64 = 0.02;
+pub const HARD_SIGMA: f64 = 0.02;
 
 /// Floor of relative step scales, in units of the model's size.
 const RELATIVE_FLOOR: f64 = 0.05;
@@ -475,8 +475,13 @@ pub fn fit(
     progress: &mut dyn FnMut(&Progress),
 ) -> Result<FitResult, FitError> {
     check(problem, cameras, targets, backend)?;
-    let (cameras, targets) = frame::bordered(cameras, targets, opts.border);
-    let (cameras, targets) = (&cameras[..], &targets[..]);
+    let bordered;
+    let (cameras, targets) = if opts.border > 0.0 {
+        bordered = frame::bordered(cameras, targets, opts.border);
+        (&bordered.0[..], &bordered.1[..])
+    } else {
+        (cameras, targets)
+    };
     let mut fixed;
     let problem = if problem.rings.is_empty() {
         fixed = problem.clone();

@@ -148,14 +148,18 @@ pub fn refine(
 mod tests {
     use super::*;
 
+    fn chair() -> crate::ir::Model {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/chair.scad");
+        let mut sources = crate::front::source::SourceMap::new();
+        crate::load_model(&mut sources, &path).unwrap().model
+    }
+
     #[test]
     fn hard_edges_are_brought_onto_the_targets_pixels() {
         // A "picture" of every face of the chair on a grid of 1-unit pixels: which pixel
         // centre each face lies past. The target moves three numbers by less than, about
         // and more than a pixel; the start is the chair itself.
-        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/chair.scad");
-        let mut sources = crate::front::source::SourceMap::new();
-        let m = crate::load_model(&mut sources, &path).unwrap().model;
+        let m = chair();
         let p = Parametric::new(&m);
         let picture = |x: &[f64]| -> Vec<f64> {
             p.faces
@@ -195,9 +199,7 @@ mod tests {
     #[test]
     fn a_part_the_target_lacks_is_squashed_in_one_sweep() {
         // The chair's left arm; the loss is its volume.
-        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/chair.scad");
-        let mut sources = crate::front::source::SourceMap::new();
-        let m = crate::load_model(&mut sources, &path).unwrap().model;
+        let m = chair();
         let p = Parametric::new(&m);
         let arm = m.parts.iter().position(|q| q.name == "left_arm").unwrap();
         let extents = |x: &[f64]| -> [f64; 3] {

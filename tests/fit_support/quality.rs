@@ -265,8 +265,8 @@ pub fn run_case(
             "  loss at the truth {:.5}, at the fit {:.5}; hard edges: {:.5}, {:.5}",
             loss_at(Parametric::new(&target), opts.sigma.1),
             result.end_loss.iter().sum::<f64>(),
-            loss_at(Parametric::new(&target), 0.02),
-            loss_at(at_fit, 0.02),
+            loss_at(Parametric::new(&target), reparamc::fit::HARD_SIGMA),
+            loss_at(at_fit, reparamc::fit::HARD_SIGMA),
         );
     }
     if let Ok(v) = std::env::var("SLOTS") {
