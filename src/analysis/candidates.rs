@@ -8,8 +8,8 @@
 //! O(n log n + pairs), never all pairs. Every holding pair is counted, redundant or not: that
 //! count is the paper's "base constraints".
 
-use super::tolerance::Tolerance;
 use crate::ir::{Affine, Feature, FeatureKind, Model};
+use crate::tolerance::Tolerance;
 use serde::Serialize;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize)]

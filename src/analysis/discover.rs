@@ -21,8 +21,8 @@ use super::pool::Pool;
 use super::project::{Faces, Projector};
 use super::rowbasis::RowBasis;
 use super::slotblocks::SlotBlocks;
-use super::tolerance::RELATIVE_ROUNDOFF;
 use crate::ir::Affine;
+use crate::tolerance::RELATIVE_ROUNDOFF;
 use std::collections::{HashMap, HashSet};
 
 /// How alike settings of the model are (1 = identical): IoU, or an image-based measure.

@@ -19,6 +19,5 @@ pub mod reparam;
 pub mod rowbasis;
 pub mod slotblocks;
 pub mod tiers;
-pub mod tolerance;
 
 pub use candidates::{Candidate, Candidates, RelationKind, find_candidates, find_candidates_for};

@@ -20,7 +20,7 @@
 
 use super::candidates::Candidates;
 use super::discover::Sample;
-use super::tolerance::Tolerance;
+use crate::tolerance::Tolerance;
 use serde::Serialize;
 
 /// How many noise levels a residual may reach before its relation is deferred.

@@ -7,8 +7,8 @@
 //! same sizes: four legs). Equal sizes of unrelated parts, or of one part's own sides, go.
 
 use super::candidates::{Candidates, RelationKind};
-use super::tolerance::Tolerance;
 use crate::ir::{FeatureKind, Model};
+use crate::tolerance::Tolerance;
 
 /// Whether two parts' bounding boxes touch or overlap.
 fn touching(model: &Model, a: usize, b: usize, tol: &Tolerance) -> bool {

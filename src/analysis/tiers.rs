@@ -28,9 +28,9 @@
 use super::candidates::{Candidates, RelationKind};
 use super::noise::NoiseGate;
 use super::prior::{repeated, structural_prior};
-use super::tolerance::Tolerance;
 use crate::ir::feature::axial_axis;
 use crate::ir::{FeatureKind, Model};
+use crate::tolerance::Tolerance;
 
 pub const STRUCTURAL: u8 = 0;
 pub const OTHER: u8 = 1;
@@ -120,9 +120,10 @@ translate([500, 0, 50]) rotate([90, 0, 0]) scale([60, 60, 10]) cylinder(h = 1, r
 
     fn setup() -> (Model, Candidates) {
         let mut sources = SourceMap::new();
-        let model = crate::load_model_text(&mut sources, "t.scad".as_ref(), MODEL.as_bytes())
-            .expect("model loads")
-            .model;
+        let model =
+            crate::front::load_model_text(&mut sources, "t.scad".as_ref(), MODEL.as_bytes())
+                .expect("model loads")
+                .model;
         let candidates = find_candidates(&model);
         (model, candidates)
     }

@@ -10,7 +10,7 @@
 use super::rewrite::round_for_source;
 use crate::analysis::ranges::Range;
 use crate::front::eval::format_number;
-use crate::front::source::Span;
+use crate::span::Span;
 use std::fmt::Write;
 
 /// One free variable as a slider.

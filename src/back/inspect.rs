@@ -5,9 +5,10 @@
 //! presents them.
 
 use crate::analysis::{Candidates, RelationKind};
-use crate::front::source::{SourceMap, Span};
+use crate::front::source::SourceMap;
 use crate::ir::feature::AXIS_NAMES;
 use crate::ir::{FreezeReason, Model, Primitive};
+use crate::span::Span;
 use serde::Serialize;
 use std::fmt::Write;
 

@@ -5,8 +5,8 @@
 //! comments, layout and structure survive exactly.
 
 use crate::front::eval::format_number;
-use crate::front::source::FileId;
 use crate::ir::Slot;
+use crate::span::FileId;
 
 /// `text` (the file `file`) with the literal of every slot in that file set to `values[slot]`.
 /// A negative value replacing a literal is parenthesised so `-` signs in front stay right.
@@ -46,7 +46,7 @@ pub fn round_for_source(v: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::front::source::Span;
+    use crate::span::Span;
 
     fn slot(id: u32, start: usize, end: usize, value: f64) -> Slot {
         Slot {

@@ -6,6 +6,7 @@
 use super::{EXIT_IO_ERROR, EXIT_MODEL_ERROR, report};
 use reparamc::compile::{Options, reparameterize};
 use reparamc::front::source::SourceMap;
+use reparamc::output::{same_file, write_atomic};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -30,29 +31,6 @@ pub struct Args {
     /// instead of the structural prior.
     #[arg(long)]
     pub all_constraints: bool,
-}
-
-/// Writes `bytes` to `path` through a temporary file in the same folder and a rename.
-fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
-    let dir = path
-        .parent()
-        .filter(|p| !p.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    let name = path
-        .file_name()
-        .map_or("out".into(), |n| n.to_string_lossy().into_owned());
-    let tmp = dir.join(format!(".{name}.{}.tmp", std::process::id()));
-    std::fs::write(&tmp, bytes)?;
-    std::fs::rename(&tmp, path).inspect_err(|_| {
-        let _ = std::fs::remove_file(&tmp);
-    })
-}
-
-fn same_file(a: &Path, b: &Path) -> bool {
-    match (a.canonicalize(), b.canonicalize()) {
-        (Ok(x), Ok(y)) => x == y,
-        _ => false,
-    }
 }
 
 fn io_error(what: &Path, e: std::io::Error) -> ExitCode {

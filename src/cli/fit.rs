@@ -7,10 +7,11 @@ use reparamc::fit::optimize::Optimizer;
 use reparamc::fit::targets::load_target_dir;
 use reparamc::fit::{FitError, FitOptions, Parametric, Stage, constraint_basis, fit, staged};
 use reparamc::front::source::SourceMap;
-use reparamc::render::image::{Rgb, grid, picture, write_atomic};
+use reparamc::output::{same_file, write_atomic};
+use reparamc::render::image::{Rgb, grid, picture};
 use reparamc::render::scene::DEFAULT_SHADE;
 use reparamc::render::soft::prepare_view;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::process::ExitCode;
 
 #[derive(clap::Args)]
@@ -136,13 +137,6 @@ struct Report<'a> {
     end_loss: &'a [f64],
     slots: Vec<SlotReport>,
     curve: &'a [reparamc::fit::Step],
-}
-
-fn same_file(a: &Path, b: &Path) -> bool {
-    match (std::fs::canonicalize(a), std::fs::canonicalize(b)) {
-        (Ok(x), Ok(y)) => x == y,
-        _ => false,
-    }
 }
 
 /// A number from 0 to 1 (clap reports the error with the flag's name).

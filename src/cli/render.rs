@@ -3,10 +3,11 @@
 use super::{EXIT_IO_ERROR, EXIT_MODEL_ERROR, load};
 use reparamc::front::diag::Diagnostic;
 use reparamc::front::source::SourceMap;
+use reparamc::output::write_atomic;
 use reparamc::render::camera::{
     Camera, CameraSpec, Projection, cameras_json, default_views, parse_cameras_json,
 };
-use reparamc::render::image::{grid, picture, write_atomic};
+use reparamc::render::image::{grid, picture};
 use reparamc::render::scene::{DEFAULT_SHADE, Scene};
 use reparamc::render::soft::prepare_view;
 use reparamc::render::{Backend, CpuBackend};

@@ -151,7 +151,7 @@ mod tests {
     fn chair() -> crate::ir::Model {
         let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/chair.scad");
         let mut sources = crate::front::source::SourceMap::new();
-        crate::load_model(&mut sources, &path).unwrap().model
+        crate::front::load_model(&mut sources, &path).unwrap().model
     }
 
     #[test]

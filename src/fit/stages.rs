@@ -149,7 +149,7 @@ mod tests {
 
     fn model(src: &str) -> Model {
         let mut sources = crate::front::source::SourceMap::new();
-        crate::load_model_text(&mut sources, std::path::Path::new("t.scad"), src.as_bytes())
+        crate::front::load_model_text(&mut sources, std::path::Path::new("t.scad"), src.as_bytes())
             .map_err(|d| d.message)
             .unwrap()
             .model

@@ -6,7 +6,7 @@
 //! literal's span is its identity as a constructive parameter); comments are kept beside the
 //! tree, in source order, so the lowering can name parts and slots after them.
 
-use super::source::Span;
+use crate::span::Span;
 
 /// One parsed file: its statements and every comment in it.
 #[derive(Debug, Clone, PartialEq)]

@@ -4,7 +4,8 @@
 //! labels and notes, rendered by codespan-reporting with file, line, column and a caret.
 //! Nothing in the front end panics on bad input; it returns one of these.
 
-use super::source::{SourceMap, Span};
+use super::source::SourceMap;
+use crate::span::Span;
 use codespan_reporting::diagnostic::{Diagnostic as CsDiagnostic, Label};
 use codespan_reporting::term::{self, termcolor::WriteColor};
 

@@ -7,8 +7,9 @@
 use super::ast::{Program, StmtKind};
 use super::diag::{DResult, Diagnostic};
 use super::parse::parse_program;
-use super::source::{FileId, SourceMap, Span};
+use super::source::SourceMap;
 use super::walk::{Visitor, visit_stmts};
+use crate::span::{FileId, Span};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 

@@ -13,3 +13,70 @@ pub mod naming;
 pub mod parse;
 pub mod source;
 pub mod walk;
+
+use diag::DResult;
+use eval::Evaluated;
+use source::SourceMap;
+use std::path::Path;
+
+/// Stack for evaluation: deeply nested models and recursion up to the call-depth limit
+/// need more than a default thread stack.
+const EVAL_STACK_BYTES: usize = 1 << 30;
+
+/// Runs `f` on a thread with a large stack and returns its result. Where the system will
+/// not give a thread that much, smaller stacks are tried, and at last the current thread.
+pub fn with_large_stack<T: Send>(f: impl FnOnce() -> T + Send) -> T {
+    let mut f = Some(f);
+    for size in [
+        EVAL_STACK_BYTES,
+        EVAL_STACK_BYTES / 8,
+        EVAL_STACK_BYTES / 64,
+    ] {
+        let outcome = std::thread::scope(|s| {
+            let g = &mut f;
+            let spawned = std::thread::Builder::new()
+                .name("reparamc-eval".into())
+                .stack_size(size)
+                .spawn_scoped(s, move || g.take().map(|f| f()));
+            spawned.ok().map(|h| match h.join() {
+                Ok(v) => v,
+                Err(panic) => std::panic::resume_unwind(panic),
+            })
+        });
+        if let Some(Some(v)) = outcome {
+            return v;
+        }
+    }
+    match f.take() {
+        Some(f) => f(),
+        None => unreachable!("the closure runs at most once"),
+    }
+}
+
+/// Reads, parses and evaluates the model at `path` (and what it includes).
+pub fn load_model(sources: &mut SourceMap, path: &Path) -> DResult<Evaluated> {
+    with_large_stack(|| {
+        let loaded = load::load_file(sources, path)?;
+        eval::evaluate(sources, &loaded)
+    })
+}
+
+/// Like [`load_model`], also returning what was parsed (for matching variant files).
+pub fn load_model_parsed(
+    sources: &mut SourceMap,
+    path: &Path,
+) -> DResult<(load::Loaded, Evaluated)> {
+    with_large_stack(|| {
+        let loaded = load::load_file(sources, path)?;
+        let evaluated = eval::evaluate(sources, &loaded)?;
+        Ok((loaded, evaluated))
+    })
+}
+
+/// Parses and evaluates model text as if it were the file `path`.
+pub fn load_model_text(sources: &mut SourceMap, path: &Path, text: &[u8]) -> DResult<Evaluated> {
+    with_large_stack(|| {
+        let loaded = load::load_bytes(sources, path, text.to_vec())?;
+        eval::evaluate(sources, &loaded)
+    })
+}

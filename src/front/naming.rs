@@ -7,8 +7,9 @@
 //! name their own literal.
 
 use super::ast::{Expr, ExprKind, Program, Stmt, StmtKind, UnaryOp};
-use super::source::{FileId, SourceMap, Span};
+use super::source::SourceMap;
 use super::walk::{Visitor, visit_stmts};
+use crate::span::{FileId, Span};
 use std::collections::HashMap;
 
 /// Names found in the source, computed once per run.

@@ -29,7 +29,7 @@ mod tests;
 
 use super::ast::{Program, Stmt};
 use super::diag::{DResult, Diagnostic};
-use super::source::{FileId, Span};
+use crate::span::{FileId, Span};
 use pest::Parser;
 use pest::error::ErrorVariant;
 use pest::iterators::Pairs;

@@ -1,45 +1,13 @@
-//! Source files and spans.
+//! Source files.
 //!
 //! Owns every file the compiler read (the model and whatever it includes), so that spans
-//! stay valid for the whole run and diagnostics can quote any of them. A [`Span`] is a byte
-//! range in one file; [`FileId`] indexes the [`SourceMap`].
+//! stay valid for the whole run and diagnostics can quote any of them. A
+//! [`Span`](crate::span::Span) is a byte range in one file; its
+//! [`FileId`](crate::span::FileId) indexes the [`SourceMap`].
 
+use crate::span::{FileId, Span};
 use codespan_reporting::files::SimpleFiles;
 use std::path::{Path, PathBuf};
-
-/// Index of a file in the [`SourceMap`].
-pub type FileId = usize;
-
-/// A byte range in one source file.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Default)]
-pub struct Span {
-    pub file: FileId,
-    pub start: u32,
-    pub end: u32,
-}
-
-impl Span {
-    pub fn new(file: FileId, start: usize, end: usize) -> Self {
-        Span {
-            file,
-            start: start as u32,
-            end: end as u32,
-        }
-    }
-
-    pub fn range(&self) -> std::ops::Range<usize> {
-        self.start as usize..self.end as usize
-    }
-
-    /// The smallest span covering both (same file assumed).
-    pub fn to(&self, other: Span) -> Span {
-        Span {
-            file: self.file,
-            start: self.start.min(other.start),
-            end: self.end.max(other.end),
-        }
-    }
-}
 
 /// Every file read during one run, with its path and text.
 #[derive(Default)]

@@ -15,7 +15,7 @@ pub use feature::{Feature, FeatureKind};
 pub use num::{Form, Num};
 pub use part::{CsgNode, Part, Primitive, Transform};
 
-use crate::front::source::Span;
+use crate::span::Span;
 use serde::Serialize;
 
 /// One constructive parameter: a numeric literal of the source that shapes geometry.

@@ -7,7 +7,7 @@
 //! intersections so volumes and images can be exact.
 
 use super::num::{FreezeSide, Num};
-use crate::front::source::Span;
+use crate::span::Span;
 
 /// A primitive solid with its arguments as OpenSCAD normalises them.
 #[derive(Debug, Clone, PartialEq)]

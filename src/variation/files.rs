@@ -6,8 +6,9 @@
 //! number at the same place; a frozen literal (one that decides structure) must not differ.
 
 use crate::front::diag::{DResult, Diagnostic};
-use crate::front::source::{FileId, SourceMap, Span};
+use crate::front::source::SourceMap;
 use crate::ir::{FreezeReason, Model};
+use crate::span::{FileId, Span};
 use std::collections::HashMap;
 use std::path::Path;
 

@@ -11,8 +11,8 @@ use super::scope::Scope;
 use super::value::Value;
 use crate::front::ast::Arg;
 use crate::front::diag::{DResult, Diagnostic};
-use crate::front::source::Span;
 use crate::ir::Num;
+use crate::span::Span;
 use std::rc::Rc;
 
 /// `sin` of an angle in degrees, exact at multiples of 30° and 45° (OpenSCAD's rule).

@@ -10,9 +10,9 @@ use super::value::{Closure, RangeValue, Value};
 use super::{Eval, MAX_CALL_DEPTH};
 use crate::front::ast::{Arg, BinaryOp, Binding, Expr, ExprKind, Param, UnaryOp, VecElem};
 use crate::front::diag::{DResult, Diagnostic};
-use crate::front::source::Span;
 use crate::ir::Num;
 use crate::ir::num::FreezeSide;
+use crate::span::Span;
 use std::rc::Rc;
 
 /// OpenSCAD's truthiness.

@@ -22,10 +22,11 @@ use super::ast::{ExprKind, StmtKind};
 use super::diag::{DResult, Diagnostic};
 use super::load::Loaded;
 use super::naming::Naming;
-use super::source::{FileId, SourceMap, Span};
+use super::source::SourceMap;
 use super::walk::{Visitor, visit_stmts};
 use crate::ir::part::Misalignment;
 use crate::ir::{CsgNode, FreezeReason, FrozenLiteral, Model, Num, Part, Slot, SlotId, Transform};
+use crate::span::{FileId, Span};
 use std::collections::{BTreeMap, HashMap};
 use std::rc::Rc;
 

@@ -11,9 +11,9 @@ use super::value::Value;
 use super::{Ctx, Eval};
 use crate::front::ast::{Arg, Stmt};
 use crate::front::diag::{DResult, Diagnostic};
-use crate::front::source::Span;
 use crate::ir::part::Misalignment;
 use crate::ir::{CsgNode, Num, Part, Primitive, Transform};
+use crate::span::Span;
 use std::collections::HashMap;
 use std::rc::Rc;
 

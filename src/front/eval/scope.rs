@@ -8,7 +8,7 @@
 
 use super::value::Value;
 use crate::front::ast::{Expr, Param, Stmt};
-use crate::front::source::Span;
+use crate::span::Span;
 use std::cell::RefCell;
 use std::collections::HashMap;
 use std::rc::Rc;

@@ -10,8 +10,8 @@ use super::value::Value;
 use super::{Ctx, Eval, MAX_CALL_DEPTH};
 use crate::front::ast::{Arg, Expr, Instance, InstanceKind, Stmt, StmtKind};
 use crate::front::diag::{DResult, Diagnostic};
-use crate::front::source::Span;
 use crate::ir::CsgNode;
+use crate::span::Span;
 use std::rc::Rc;
 
 /// The children of a module instance, evaluated where `children()` is called.

@@ -17,7 +17,7 @@ use crate::front::ast::{
     Arg, Binding, Comment, Ident, Instance, InstanceKind, Modifiers, Param, Stmt, StmtKind,
 };
 use crate::front::diag::{DResult, Diagnostic};
-use crate::front::source::{FileId, Span};
+use crate::span::{FileId, Span};
 use pest::iterators::{Pair, Pairs};
 
 type P<'i> = Pair<'i, Rule>;

@@ -10,7 +10,7 @@ use super::scan::{Context, Scanned, context_at};
 use super::{OpenScadParser, Rule, SYNTAX_ERROR, point, too_deep};
 use crate::front::ast::Comment;
 use crate::front::diag::Diagnostic;
-use crate::front::source::{FileId, Span};
+use crate::span::{FileId, Span};
 use pest::Parser;
 use pest::error::{Error, ErrorVariant, InputLocation};
 use pest::set_error_detail;

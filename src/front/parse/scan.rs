@@ -9,7 +9,7 @@
 use super::{MAX_DEPTH, SYNTAX_ERROR, too_deep};
 use crate::front::ast::Comment;
 use crate::front::diag::{DResult, Diagnostic};
-use crate::front::source::{FileId, Span};
+use crate::span::{FileId, Span};
 
 /// What the pre-scan learned.
 pub(super) struct Scanned {

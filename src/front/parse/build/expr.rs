@@ -5,7 +5,7 @@ use crate::front::ast::{BinaryOp, Expr, ExprKind, UnaryOp, VecElem};
 use crate::front::diag::{DResult, Diagnostic};
 use crate::front::parse::strings::decode_string;
 use crate::front::parse::{Rule, SYNTAX_ERROR};
-use crate::front::source::Span;
+use crate::span::Span;
 
 impl<'a> Builder<'a> {
     pub(super) fn expr(&self, pair: P<'_>, depth: usize) -> DResult<Expr> {

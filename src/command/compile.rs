@@ -1,0 +1,1 @@
+//! The `compile` command's entry point (being moved here; see ARCHITECTURE.md).

@@ -1,0 +1,1 @@
+//! The `fit` command's entry point (being moved here; see ARCHITECTURE.md).
