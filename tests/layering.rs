@@ -267,6 +267,47 @@ fn tolerances_are_written_only_in_the_tolerance_module() {
     );
 }
 
+/// What the command line may use of the library: the entry points, diagnostics, the source
+/// map that diagnostics quote, and the output writer.
+const CLI_MAY_USE: &[&str] = &[
+    "reparamc::command",
+    "reparamc::front::diag",
+    "reparamc::front::source::SourceMap",
+    "reparamc::output",
+];
+
+#[test]
+fn the_command_line_calls_only_the_entry_points() {
+    let mut files = Vec::new();
+    rust_files(&src().join("cli"), &mut files);
+    files.push(src().join("main.rs"));
+    let mut wrong = Vec::new();
+    for f in files {
+        let code = code_of(&std::fs::read_to_string(&f).unwrap());
+        for (i, _) in code.match_indices("reparamc::") {
+            let path: String = code[i..]
+                .chars()
+                .take_while(|c| c.is_ascii_alphanumeric() || *c == '_' || *c == ':')
+                .collect();
+            let braced = code[i + path.len()..].starts_with('{');
+            let ok = CLI_MAY_USE
+                .iter()
+                .any(|p| path.starts_with(p) || (braced && p.starts_with(path.as_str())));
+            if !ok {
+                wrong.push(format!(
+                    "{}: {path}",
+                    f.strip_prefix(src()).unwrap().display()
+                ));
+            }
+        }
+    }
+    assert!(
+        wrong.is_empty(),
+        "the CLI reaches past the entry points:\n{}",
+        wrong.join("\n")
+    );
+}
+
 #[test]
 fn the_checks_see_what_they_look_for() {
     assert_eq!(
