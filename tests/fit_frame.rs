@@ -51,7 +51,7 @@ fn a_part_just_outside_the_picture_still_costs() {
     truth[slot("back.z")] = 7.5;
     truth[slot("back.height")] = 1.0;
     let (lo, hi) = m.bounds().unwrap();
-    let cams: Vec<Camera> = default_views(lo, hi, 2, 64, 64).split_off(1);
+    let cams: Vec<Camera> = default_views(lo, hi, 2, 64, 64).unwrap().split_off(1);
     let scene = p.scene(&truth);
     let targets: Vec<Target> = cams
         .iter()

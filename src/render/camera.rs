@@ -15,6 +15,9 @@
 //!
 //! `cameras.json` is a list of cameras (or `{"cameras": [...]}`); see [`CameraSpec`].
 
+use crate::tolerance::{
+    LENGTH_FLOOR, MIN_FRAMED_RADIUS, NEAR_DEPTH, PARALLEL_SINE, RENDER_ROUNDOFF,
+};
 use serde::{Deserialize, Serialize};
 
 /// OpenSCAD's field of view (degrees, vertical).
@@ -109,20 +112,6 @@ pub enum CameraError {
 }
 
 impl Camera {
-    /// A camera looking from `eye` at `center` with `up`, OpenSCAD's field of view.
-    pub fn look_at(name: &str, eye: Vec3, center: Vec3, up: Vec3, width: u32, height: u32) -> Self {
-        Camera {
-            name: name.to_string(),
-            eye,
-            center,
-            up,
-            fov: OPENSCAD_FOV,
-            projection: Projection::Perspective,
-            width,
-            height,
-        }
-    }
-
     /// OpenSCAD's `--camera` numbers (7: gimbal, 6: eye and center).
     pub fn from_openscad(
         name: &str,
@@ -188,7 +177,7 @@ impl Camera {
             [f.right[2], f.up[2], back[2]],
         ];
         let beta = (-r[2][0]).clamp(-1.0, 1.0).asin();
-        let (alpha, gamma) = if r[2][0].abs() < 1.0 - 1e-12 {
+        let (alpha, gamma) = if r[2][0].abs() < 1.0 - RENDER_ROUNDOFF {
             (r[2][1].atan2(r[2][2]), r[1][0].atan2(r[0][0]))
         } else {
             // Gimbal lock: put the whole turn about x.
@@ -240,9 +229,7 @@ impl Camera {
                 self.name
             )));
         }
-        if norm(cross(normalize(dir), normalize(self.up))) < 1e-9 && norm(self.up) > 0.0 {
-            // Handled by frame(): an up along the view falls back to another axis.
-        }
+        // An up along the view is no error: frame() falls back to another axis.
         if !(self.fov > 0.0 && self.fov < 180.0) {
             return Err(CameraError::Invalid(format!(
                 "camera `{}`: field of view {}° is not between 0 and 180",
@@ -263,9 +250,9 @@ impl Camera {
     pub fn frame(&self) -> Frame {
         let forward = normalize(sub(self.center, self.eye));
         let mut right = cross(forward, self.up);
-        if norm(right) < 1e-9 * norm(self.up).max(1e-300) || norm(self.up) == 0.0 {
+        if norm(right) < PARALLEL_SINE * norm(self.up).max(LENGTH_FLOOR) || norm(self.up) == 0.0 {
             right = cross(forward, [0.0, 1.0, 0.0]);
-            if norm(right) < 1e-9 {
+            if norm(right) < PARALLEL_SINE {
                 right = cross(forward, [1.0, 0.0, 0.0]);
             }
         }
@@ -376,7 +363,7 @@ impl Frame {
             ));
         }
         let z = dot(self.forward, v);
-        if z <= 1e-9 {
+        if z <= NEAR_DEPTH {
             return None;
         }
         let f = self.focal;
@@ -564,8 +551,15 @@ pub fn cameras_json(specs: &[CameraSpec]) -> String {
 }
 
 /// `n` views around a bounding box, framed so the whole box is visible with a margin:
-/// OpenSCAD's default view first, then front, right, back-left from above, and top.
-pub fn default_views(lo: Vec3, hi: Vec3, n: usize, width: u32, height: u32) -> Vec<Camera> {
+/// OpenSCAD's default view first, then front, right, back-left from above, and top. An
+/// error when the box is too large (or not finite) to frame, or the image size is invalid.
+pub fn default_views(
+    lo: Vec3,
+    hi: Vec3,
+    n: usize,
+    width: u32,
+    height: u32,
+) -> Result<Vec<Camera>, CameraError> {
     const VIEWS: [(&str, f64, f64); 8] = [
         ("default", 55.0, 25.0),
         ("front", 80.0, 0.0),
@@ -577,11 +571,16 @@ pub fn default_views(lo: Vec3, hi: Vec3, n: usize, width: u32, height: u32) -> V
         ("front_left", 65.0, -35.0),
     ];
     let center = scale(add(lo, hi), 0.5);
-    let radius = (norm(sub(hi, lo)) / 2.0).max(1e-6);
+    let radius = (norm(sub(hi, lo)) / 2.0).max(MIN_FRAMED_RADIUS);
     let aspect = width as f64 / height as f64;
     let half = (OPENSCAD_FOV.to_radians() / 2.0).tan() * aspect.min(1.0);
     // Distance at which a sphere around the box fits with a 10% margin.
     let dist = radius * 1.1 / half.atan().sin();
+    if !(center.iter().all(|v| v.is_finite()) && dist.is_finite()) {
+        return Err(CameraError::Invalid(format!(
+            "a box from {lo:?} to {hi:?} is too large to frame with a camera"
+        )));
+    }
     (0..n)
         .map(|i| {
             let (name, rx, rz) = VIEWS[i % VIEWS.len()];
@@ -593,7 +592,6 @@ pub fn default_views(lo: Vec3, hi: Vec3, n: usize, width: u32, height: u32) -> V
             let rz = rz + 360.0 * (i / VIEWS.len()) as f64 / 7.0;
             let params = [center[0], center[1], center[2], rx, 0.0, rz, dist];
             Camera::from_openscad(&name, &params, Projection::Perspective, width, height)
-                .expect("seven finite numbers make a camera")
         })
         .collect()
 }

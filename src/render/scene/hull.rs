@@ -4,6 +4,7 @@
 
 use super::{CUTOFF, Kind, NTHETA, PartGeom, mat_vec};
 use crate::render::camera::{Frame, Vec3, cross, dot, norm, normalize};
+use crate::tolerance::{NEAR_DEPTH, PARALLEL_SINE, RENDER_ROUNDOFF};
 
 /// Tolerance (pixels) of polygonal silhouettes of curved parts.
 const CHORD_TOLERANCE: f64 = 0.05;
@@ -188,7 +189,7 @@ pub fn samples(p: &PartGeom, frame: &Frame) -> Vec<Sample> {
             } else {
                 let e = p.to_local(frame.eye);
                 let dist = norm(e);
-                if dist <= r * (1.0 + 1e-9) {
+                if dist <= r * (1.0 + PARALLEL_SINE) {
                     return Vec::new();
                 }
                 let f = r * r / (dist * dist);
@@ -235,7 +236,7 @@ pub fn ring_count(p: &PartGeom, frame: &Frame, r: f64) -> usize {
         frame.focal
     } else {
         let z = frame.depth(p.center) - world_r;
-        if z <= 1e-9 {
+        if z <= NEAR_DEPTH {
             return 128;
         }
         frame.focal / z
@@ -302,7 +303,7 @@ fn convex_hull(pts: &mut [([f64; 2], u32)]) -> Vec<([f64; 2], u32)> {
         .iter()
         .fold(0.0f64, |m, p| m.max(p.0[0].abs()).max(p.0[1].abs()))
         .max(1.0);
-    let eps = 1e-12 * span * span;
+    let eps = RENDER_ROUNDOFF * span * span;
     let mut h: Vec<([f64; 2], u32)> = Vec::with_capacity(pts.len() + 1);
     for &p in pts.iter() {
         while h.len() >= 2 && turn(h[h.len() - 2].0, h[h.len() - 1].0, p.0) <= eps {

@@ -4,6 +4,7 @@
 
 use super::{Hit, Kind, PartGeom};
 use crate::render::camera::{Vec3, dot};
+use crate::tolerance::{LENGTH_FLOOR, PARALLEL_SINE_SQUARED, RENDER_ROUNDOFF};
 
 impl PartGeom {
     /// The ray's exact passage through the part (world ray; parameters are the ray's).
@@ -53,7 +54,7 @@ impl PartGeom {
             Kind::Frustum => {
                 let (z0, z1) = (self.lo[2], self.hi[2]);
                 let dd = d[0] * d[0] + d[1] * d[1];
-                if dd <= 1e-18 * dot(d, d) {
+                if dd <= PARALLEL_SINE_SQUARED * dot(d, d) {
                     [0.0, 0.0, if d[2] > 0.0 { -1.0 } else { 1.0 }]
                 } else {
                     let ts = -(o[0] * d[0] + o[1] * d[1]) / dd;
@@ -64,13 +65,13 @@ impl PartGeom {
                         [0.0, 0.0, 1.0]
                     } else {
                         let k = (self.r2 - self.r1) / (z1 - z0);
-                        let r = (p[0] * p[0] + p[1] * p[1]).sqrt().max(1e-300);
+                        let r = (p[0] * p[0] + p[1] * p[1]).sqrt().max(LENGTH_FLOOR);
                         [p[0] / r, p[1] / r, -k]
                     }
                 }
             }
             Kind::Sphere => {
-                let dd = dot(d, d).max(1e-300);
+                let dd = dot(d, d).max(LENGTH_FLOOR);
                 let ts = -dot(o, d) / dd;
                 [o[0] + ts * d[0], o[1] + ts * d[1], o[2] + ts * d[2]]
             }
@@ -178,8 +179,8 @@ fn intersect_frustum(o: Vec3, d: Vec3, z0: f64, z1: f64, r1: f64, r2: f64) -> Op
     let scale_a = d[0] * d[0] + d[1] * d[1] + k * k * d[2] * d[2];
     // Pieces of the line where the quadratic is ≤ 0.
     let mut pieces: [(f64, f64); 2] = [(f64::NAN, f64::NAN); 2];
-    if a.abs() <= 1e-12 * scale_a {
-        if b.abs() <= 1e-300 {
+    if a.abs() <= RENDER_ROUNDOFF * scale_a {
+        if b.abs() <= LENGTH_FLOOR {
             if c > 0.0 {
                 return None;
             }

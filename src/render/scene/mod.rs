@@ -35,6 +35,7 @@ pub use items::{Item, Op, eval_inside, eval_soft, items_of};
 
 use super::camera::{Vec3, cross, dot, norm, normalize};
 use crate::ir::{Affine, CsgNode, Part, Primitive};
+use crate::tolerance::{LENGTH_FLOOR, RENDER_ROUNDOFF};
 
 /// Number of parameters of a part.
 pub const NTHETA: usize = 15;
@@ -97,7 +98,7 @@ fn det3(m: &[[f64; 3]; 3]) -> f64 {
 fn inverse3(m: &[[f64; 3]; 3]) -> Option<[[f64; 3]; 3]> {
     let d = det3(m);
     let scale = m.iter().flatten().fold(0.0f64, |a, v| a.max(v.abs()));
-    if d.abs() <= 1e-12 * scale.powi(3) || !d.is_finite() {
+    if d.abs() <= RENDER_ROUNDOFF * scale.powi(3) || !d.is_finite() {
         return None;
     }
     let c0 = cross(m[1], m[2]);
@@ -249,7 +250,7 @@ impl PartGeom {
         }
         let q = self.to_local(p);
         let inv = &self.inv;
-        let rowlen = |a: usize| norm(inv[a]).max(1e-300);
+        let rowlen = |a: usize| norm(inv[a]).max(LENGTH_FLOOR);
         // World normal of a local normal and the factor from local to world distance.
         let world = |nl: Vec3| -> (Vec3, f64) {
             let w = [
@@ -257,7 +258,7 @@ impl PartGeom {
                 inv[0][1] * nl[0] + inv[1][1] * nl[1] + inv[2][1] * nl[2],
                 inv[0][2] * nl[0] + inv[1][2] * nl[1] + inv[2][2] * nl[2],
             ];
-            let l = norm(w).max(1e-300);
+            let l = norm(w).max(LENGTH_FLOOR);
             ([w[0] / l, w[1] / l, w[2] / l], l)
         };
         let finish = |sd: f64, qs: Vec3, n: Vec3, dq: [Vec3; 3]| -> SurfacePoint {
@@ -304,7 +305,7 @@ impl PartGeom {
                 let h = z1 - z0;
                 let k = (self.r2 - self.r1) / h;
                 let rho = (q[0] * q[0] + q[1] * q[1]).sqrt();
-                let (c, s) = if rho > 1e-300 {
+                let (c, s) = if rho > LENGTH_FLOOR {
                     (q[0] / rho, q[1] / rho)
                 } else {
                     (1.0, 0.0)
@@ -345,7 +346,7 @@ impl PartGeom {
             }
             Kind::Sphere => {
                 let r = self.r1;
-                let rho = norm(q).max(1e-300);
+                let rho = norm(q).max(LENGTH_FLOOR);
                 let nl = [q[0] / rho, q[1] / rho, q[2] / rho];
                 let (n, w) = world(nl);
                 let sd = (rho - r) / w;
