@@ -2,15 +2,18 @@
 //!
 //! The CPU prepares what every pixel shares (camera frames, silhouette hulls, item
 //! programs) exactly as for the CPU backend; the GPU evaluates every pixel of every view in
-//! one dispatch and appends gradient entries; the loss and the chain to part parameters run
-//! on the CPU with the same code as the CPU backend, so both backends compute the same
-//! numbers (up to `f32` rounding). On a machine without a GPU, Mesa's lavapipe provides a
+//! one dispatch and appends gradient entries; the image function and the chain to part
+//! parameters run on the CPU with the same code as the CPU backend, so both backends
+//! compute the same numbers (up to `f32` rounding). A dispatch lays the inputs out as the
+//! shader's buffers (`gpu_*`), runs once, reads the outputs back and cuts them per view; it
+//! runs again with more room when the entry buffers overflowed. On a machine without a GPU, Mesa's lavapipe provides a
 //! Vulkan device that runs the shader on the CPU.
 
 use super::scene::{Kind, NSHADE, Op, PartGeom, Scene};
 use super::soft::{Entries, Entry, HardImage, SoftImage, SurfaceEntry, ViewPrep};
 use super::{Backend, ImageFunction, ImageValues, sum_views, view_value};
 use bytemuck::{Pod, Zeroable};
+use glam::DVec3;
 use wgpu::util::DeviceExt;
 
 const SHADER: &str = include_str!("../../shaders/soft.wgsl");
@@ -293,6 +296,32 @@ impl GpuBackend {
                 })
                 .collect::<Vec<_>>(),
         });
+        let sizes = [n * 8, n * 16, n * 4, entry_bytes, sentry_bytes];
+        let outputs = &buffers[buffers.len() - 5..];
+        let groups = inp.params.total_pixels.div_ceil(WORKGROUP).max(1);
+        let bytes = self.submit(&bind, outputs, sizes, groups, want_entries);
+        let mut bytes = bytes.into_iter();
+        let mut next = || bytes.next().unwrap_or_default();
+        Outputs {
+            soft: bytemuck::pod_collect_to_vec(&next()),
+            hard: bytemuck::pod_collect_to_vec(&next()),
+            item: bytemuck::pod_collect_to_vec(&next()),
+            entries: next(),
+            sentries: next(),
+        }
+    }
+
+    /// Runs `groups` workgroups over the bound buffers and copies the outputs (`sizes`
+    /// bytes each; the entry buffers only with `want_entries`) back: their bytes.
+    fn submit(
+        &self,
+        bind: &wgpu::BindGroup,
+        outputs: &[wgpu::Buffer],
+        sizes: [u64; 5],
+        groups: u32,
+        want_entries: bool,
+    ) -> Vec<Vec<u8>> {
+        let dev = &self.device;
         let read = |label: &str, size: u64| {
             dev.create_buffer(&wgpu::BufferDescriptor {
                 label: Some(label),
@@ -301,7 +330,6 @@ impl GpuBackend {
                 mapped_at_creation: false,
             })
         };
-        let sizes = [n * 8, n * 16, n * 4, entry_bytes, sentry_bytes];
         let labels = [
             "soft-read",
             "hard-read",
@@ -321,13 +349,11 @@ impl GpuBackend {
                 timestamp_writes: None,
             });
             pass.set_pipeline(&self.pipeline);
-            pass.set_bind_group(0, &bind, &[]);
-            let groups = inp.params.total_pixels.div_ceil(WORKGROUP).max(1);
+            pass.set_bind_group(0, bind, &[]);
             let x = groups.min(65535);
             let y = groups.div_ceil(x);
             pass.dispatch_workgroups(x, y, 1);
         }
-        let outputs = &buffers[buffers.len() - 5..];
         for k in 0..copied {
             enc.copy_buffer_to_buffer(&outputs[k], 0, &reads[k], 0, sizes[k]);
         }
@@ -339,7 +365,7 @@ impl GpuBackend {
             submission_index: None,
             timeout: None,
         });
-        let bytes: Vec<Vec<u8>> = reads[..copied]
+        let bytes = reads[..copied]
             .iter()
             .map(|b| {
                 b.get_mapped_range(..)
@@ -350,15 +376,7 @@ impl GpuBackend {
         for r in &reads[..copied] {
             r.unmap();
         }
-        let mut bytes = bytes.into_iter();
-        let mut next = || bytes.next().unwrap_or_default();
-        Outputs {
-            soft: bytemuck::pod_collect_to_vec(&next()),
-            hard: bytemuck::pod_collect_to_vec(&next()),
-            item: bytemuck::pod_collect_to_vec(&next()),
-            entries: next(),
-            sentries: next(),
-        }
+        bytes
     }
 
     /// The kernel's input buffers, in binding order (the uniform parameters first).
@@ -424,7 +442,7 @@ fn gpu_views(views: &[ViewPrep], shades: &[[f64; NSHADE]]) -> (Vec<GView>, u32) 
     let mut offset = 0u32;
     for (v, sh) in views.iter().zip(shades) {
         let f = &v.frame;
-        let v4 = |a: [f64; 3], w: f64| [a[0] as f32, a[1] as f32, a[2] as f32, w as f32];
+        let v4 = |a: DVec3, w: f64| [a.x as f32, a.y as f32, a.z as f32, w as f32];
         gviews.push(GView {
             eye: v4(f.eye, f.focal),
             right: v4(f.right, if f.ortho { 1.0 } else { 0.0 }),
@@ -441,22 +459,9 @@ fn gpu_views(views: &[ViewPrep], shades: &[[f64; NSHADE]]) -> (Vec<GView>, u32) 
 
 /// A part's geometry as the shader reads it.
 fn gpu_part(p: &PartGeom) -> GPart {
-    let lrow = |i: usize| {
-        [
-            p.l[i][0] as f32,
-            p.l[i][1] as f32,
-            p.l[i][2] as f32,
-            p.t[i] as f32,
-        ]
-    };
-    let row = |i: usize| {
-        [
-            p.inv[i][0] as f32,
-            p.inv[i][1] as f32,
-            p.inv[i][2] as f32,
-            p.inv_t[i] as f32,
-        ]
-    };
+    // Rows of the maps, with the translation last.
+    let lrow = |i: usize| p.l.row(i).extend(p.t[i]).as_vec4().to_array();
+    let row = |i: usize| p.inv.row(i).extend(p.inv_t[i]).as_vec4().to_array();
     GPart {
         inv0: row(0),
         inv1: row(1),
@@ -587,7 +592,7 @@ fn read_edge_entries(raw: &[u8], capacity: usize, per_view: &mut [Entries]) -> u
 /// Surface entries to their views; the number the kernel wanted to write.
 fn read_surface_entries(raw: &[u8], capacity: usize, per_view: &mut [Entries]) -> usize {
     let (count, body) = entry_buffer::<GSurfaceEntry>(raw, capacity);
-    let v3 = |a: [f32; 4]| [a[0] as f64, a[1] as f64, a[2] as f64];
+    let v3 = |a: [f32; 4]| DVec3::new(a[0] as f64, a[1] as f64, a[2] as f64);
     for e in &body {
         per_view[e.a[2] as usize].surfaces.push(SurfaceEntry {
             pixel: e.a[0],
@@ -596,7 +601,7 @@ fn read_surface_entries(raw: &[u8], capacity: usize, per_view: &mut [Entries]) -
             ds: e.b[1] as f64,
             n: v3(e.n),
             q: v3(e.q),
-            ldq: v3(e.l),
+            ldq: v3(e.l).to_array(),
         });
     }
     count

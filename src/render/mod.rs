@@ -3,9 +3,14 @@
 //! One interface ([`Backend`]), two implementations: [`CpuBackend`] (the reference, in Rust)
 //! and, with the `gpu` feature, `gpu::GpuBackend` (wgpu with the WGSL in `shaders/`; Mesa's
 //! lavapipe runs it on a CPU). Both compute the same soft channels from the same prepared
-//! views ([`soft::ViewPrep`]), the same loss, and the gradient of the loss with respect to
-//! every part parameter. `cpu` holds an independent hard ray caster over `geom`'s exact
-//! ray intervals, used as the reference picture.
+//! views ([`soft::ViewPrep`]) and, for any [`ImageFunction`] of those images (the fit's
+//! image loss, say), its values and its gradient with respect to every part parameter,
+//! summed in view order by the one accumulation both share. `cpu` holds an independent
+//! hard ray caster over `geom`'s exact ray intervals, used as the reference picture.
+//!
+//! The renderer knows no optimiser: it imports only `geom` and `ir` (and the crate-root
+//! `tolerance`); what an image is compared with belongs to `fit`. Vector and matrix maths
+//! is `glam`'s (`DVec3`, `DMat3`), written so every float is the same as before.
 
 pub mod camera;
 pub mod cpu;

@@ -1,16 +1,22 @@
 //! The per-pixel kernel: each item's coverage and visible surface at one pixel,
 //! front-to-back compositing into `M` and `S`, and (with soft edges) the gradient entries
 //! of that pixel. Per-thread scratch buffers are cleared at the start of every pixel.
+//!
+//! [`PixelCtx::pixel`] drives one pixel: each item's layer (`item_layer`: a plain item, or a
+//! split difference with its soft cut edges), front-to-back compositing, then the gradient
+//! entries (`record_entries`). An item's part states stay in the scratch exactly while the
+//! item has a layer.
 
 use super::gradient::{Entries, Entry, SurfaceEntry};
 use super::visible::{first_solid_from, visible_surface, visible_surface_at};
 use super::{HULL_MARGIN, ViewPrep};
-use crate::render::camera::{Frame, Vec3, dot, scale};
+use crate::render::camera::Frame;
 use crate::render::scene::{
     CUTOFF, Coverage, Hit, Item, NSHADE, PartGeom, Scene, SurfacePoint, eval_inside, eval_soft,
     logistic, shade_features,
 };
 use crate::tolerance::{PIXEL_SCALE_FLOOR, RENDER_ROUNDOFF};
+use glam::DVec3;
 
 /// What one layer (an item at a pixel) contributes: coverage `α` and premultiplied shade
 /// `P` (`α·shade` for a plain surface).
@@ -84,12 +90,12 @@ pub(super) struct PixelOut {
     pub(super) m: f64,
     pub(super) s: f64,
     pub(super) item: i32,
-    pub(super) normal: Vec3,
+    pub(super) normal: DVec3,
     pub(super) depth: f64,
 }
 
 impl PixelCtx<'_> {
-    fn part_at(&self, p: usize, u: [f64; 2], o: Vec3, d: Vec3) -> PartAt {
+    fn part_at(&self, p: usize, u: [f64; 2], o: DVec3, d: DVec3) -> PartAt {
         let g: &PartGeom = &self.scene.parts[p];
         let mut st = PartAt {
             alpha: 0.0,
@@ -140,9 +146,9 @@ impl PixelCtx<'_> {
 
     /// Shade of item `item`'s surface with world normal `n_world`: the view's shading
     /// times the item's albedo.
-    fn shade_of(&self, item: usize, n_world: Vec3) -> f64 {
+    fn shade_of(&self, item: usize, n_world: DVec3) -> f64 {
         let n = self.prep.frame.to_eye(n_world);
-        let f = shade_features(n);
+        let f = shade_features(n.to_array());
         let mut v = 0.0;
         for k in 0..NSHADE {
             v += self.shade[k] * f[k];
@@ -164,7 +170,7 @@ impl PixelCtx<'_> {
         scratch.layers.clear();
         scratch.states.clear();
         scratch.negs.clear();
-        let mut best_hard: Option<(f64, i32, Vec3)> = None;
+        let mut best_hard: Option<(f64, i32, DVec3)> = None;
         for (idx, item) in self.scene.items.iter().enumerate() {
             let Some(r) = self.prep.rects[idx] else {
                 continue;
@@ -180,7 +186,7 @@ impl PixelCtx<'_> {
         }
         let (item, normal, depth) = match best_hard {
             Some((t, i, n)) => (i, frame.to_eye(n), t),
-            None => (-1, [0.0; 3], f64::INFINITY),
+            None => (-1, DVec3::ZERO, f64::INFINITY),
         };
         PixelOut {
             m,
@@ -199,10 +205,10 @@ impl PixelCtx<'_> {
         idx: usize,
         item: &Item,
         u: [f64; 2],
-        o: Vec3,
-        d: Vec3,
+        o: DVec3,
+        d: DVec3,
         scratch: &mut Scratch,
-        best_hard: &mut Option<(f64, i32, Vec3)>,
+        best_hard: &mut Option<(f64, i32, DVec3)>,
     ) {
         let Scratch {
             layers,
@@ -218,7 +224,7 @@ impl PixelCtx<'_> {
         let st = &states[first_state..];
         let range = (first_state as u32, states.len() as u32);
         // The exact visible surface of the item.
-        let visible: Option<(f64, Vec3)> = if item.is_single() {
+        let visible: Option<(f64, DVec3)> = if item.is_single() {
             st[0].1.hit.filter(|h| h.t0 > 0.0).map(|h| (h.t0, h.n0))
         } else {
             visible_surface(&item.program, st)
@@ -262,10 +268,10 @@ impl PixelCtx<'_> {
         idx: usize,
         item: &Item,
         st: &[(u32, PartAt)],
-        visible: Option<(f64, Vec3)>,
+        visible: Option<(f64, DVec3)>,
         plain: Layer,
-        o: Vec3,
-        d: Vec3,
+        o: DVec3,
+        d: DVec3,
     ) -> Option<Layer> {
         let (alpha, keep) = match self.sigma {
             None => (if visible.is_some() { 1.0 } else { 0.0 }, 1.0),
@@ -304,7 +310,7 @@ impl PixelCtx<'_> {
 
     /// The continuation of an item's first part's face past the silhouette: its depth and
     /// world normal.
-    fn fallback(&self, item: &Item, st: &[(u32, PartAt)], o: Vec3, d: Vec3) -> (f64, Vec3) {
+    fn fallback(&self, item: &Item, st: &[(u32, PartAt)], o: DVec3, d: DVec3) -> (f64, DVec3) {
         let first = item.parts[0];
         let g = &self.scene.parts[first];
         let n = match state_of(st, first).and_then(|s| s.hit) {
@@ -324,12 +330,12 @@ impl PixelCtx<'_> {
         negatives: &[usize],
         st: &[(u32, PartAt)],
         plain: Layer,
-        o: Vec3,
-        d: Vec3,
+        o: DVec3,
+        d: DVec3,
         negs: &mut Vec<Neg>,
     ) -> Option<Layer> {
         let pos = item.positive();
-        let front: Option<(f64, Vec3, usize)> = if pos.len() == 1 {
+        let front: Option<(f64, DVec3, usize)> = if pos.len() == 1 {
             st[0].1.hit.filter(|h| h.t0 > 0.0).map(|h| (h.t0, h.n0, 0))
         } else {
             visible_surface_at(pos, st)
@@ -406,17 +412,17 @@ impl PixelCtx<'_> {
         &self,
         negatives: &[usize],
         st: &[(u32, PartAt)],
-        (ta, na, ka): (f64, Vec3, usize),
-        o: Vec3,
-        d: Vec3,
+        (ta, na, ka): (f64, DVec3, usize),
+        o: DVec3,
+        d: DVec3,
         negs: &mut Vec<Neg>,
     ) -> (f64, Option<(f64, usize)>) {
         let frame = &self.prep.frame;
-        let pa = [o[0] + ta * d[0], o[1] + ta * d[1], o[2] + ta * d[2]];
+        let pa = o + d * ta;
         // The front point as a material point of its part: the front moves with it.
         let part_a = st[ka].0;
         let sp_a = self.scene.parts[part_a as usize].surface_distance(pa);
-        let na_d = dot(na, d);
+        let na_d = na.dot(d);
         let mut kappa = 1.0;
         let mut deepest: Option<(f64, usize)> = None;
         for &b in negatives {
@@ -441,7 +447,7 @@ impl PixelCtx<'_> {
                         let k = logistic(s / sigma);
                         // ∂sd/∂(front offset): the front point slides along the ray.
                         let along = if na_d.abs() > RENDER_ROUNDOFF {
-                            -dot(sp.n, d) / na_d
+                            -sp.n.dot(d) / na_d
                         } else {
                             0.0
                         };
@@ -645,27 +651,23 @@ fn alpha_of(st: &[(u32, PartAt)], p: usize) -> f64 {
 /// Pixel-space length of the gradient of a distance along normal `nb`, for a point that
 /// moves on the plane (normal `na`) hit at parameter `t` of the ray `d`: how many world
 /// units of that distance one pixel is.
-fn pixel_scale(frame: &Frame, d: Vec3, t: f64, na: Vec3, nb: Vec3) -> f64 {
-    let dd = dot(na, d);
+fn pixel_scale(frame: &Frame, d: DVec3, t: f64, na: DVec3, nb: DVec3) -> f64 {
+    let dd = na.dot(d);
     let f = frame.focal;
-    let axes = [scale(frame.right, 1.0 / f), scale(frame.up, -1.0 / f)];
+    let axes = [frame.right * (1.0 / f), frame.up * (-1.0 / f)];
     let mut g2 = 0.0;
     for dv in axes {
         let dp = if dd.abs() < RENDER_ROUNDOFF {
             // Grazing: the point slides along the ray; count the plain footprint.
-            if frame.ortho { dv } else { scale(dv, t) }
+            if frame.ortho { dv } else { dv * t }
         } else if frame.ortho {
-            let dt = -dot(na, dv) / dd;
-            [dv[0] + dt * d[0], dv[1] + dt * d[1], dv[2] + dt * d[2]]
+            let dt = -na.dot(dv) / dd;
+            dv + d * dt
         } else {
-            let dt = -t * dot(na, dv) / dd;
-            [
-                t * dv[0] + dt * d[0],
-                t * dv[1] + dt * d[1],
-                t * dv[2] + dt * d[2],
-            ]
+            let dt = -t * na.dot(dv) / dd;
+            dv * t + d * dt
         };
-        let c = dot(nb, dp);
+        let c = nb.dot(dp);
         g2 += c * c;
     }
     g2.sqrt().max(PIXEL_SCALE_FLOOR)
