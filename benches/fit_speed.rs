@@ -27,7 +27,7 @@ fn setup() -> Setup {
         .model;
     let problem = Parametric::new(&model);
     let (lo, hi) = model.bounds().unwrap();
-    let cameras = default_views(lo, hi, 5, 128, 128);
+    let cameras = default_views(lo, hi, 5, 128, 128).expect("cameras frame the chair");
     // Targets: the chair with a wider seat and longer legs, rendered by us.
     let mut xt = problem.x0.clone();
     for (i, s) in model.slots.iter().enumerate() {

@@ -49,4 +49,47 @@ impl Tolerance {
 
 // ---- rendering (cameras, soft silhouettes, GPU) -----------------------------------------
 
+/// Floor of a length, radius or squared length the renderer divides by (a point on a
+/// frustum's axis, a ray through a sphere's center, a degenerate row of a part's map):
+/// far below any length a model has, so it only keeps a zero from dividing.
+pub const LENGTH_FLOOR: f64 = 1e-300;
+
+/// Relative round-off of the renderer's unit-scale arithmetic: a determinant below this
+/// times the cube of its matrix's largest entry (singular map), a turn below this times the
+/// squared span of a polygon's points (collinear), a quadratic coefficient below this times
+/// its scale (a cone's linear case), a cosine below this (a ray grazing a plane, a camera in
+/// gimbal lock) count as zero. Far below what a picture shows, well above `f64` round-off.
+pub const RENDER_ROUNDOFF: f64 = 1e-12;
+
+/// The sine (a cross product of unit vectors, or of a vector relative to its length) below
+/// which two directions count as parallel: a camera's up along its view, an eye on a
+/// sphere's surface (relative to its radius).
+pub const PARALLEL_SINE: f64 = 1e-9;
+
+/// The square of [`PARALLEL_SINE`] as written (`1e-18`): a local ray whose squared sideways
+/// component is below this fraction of its squared length runs along a frustum's axis.
+pub const PARALLEL_SINE_SQUARED: f64 = 1e-18;
+
+/// Depth along the view (world units) at or below which a point is behind, or too near,
+/// the eye to project.
+pub const NEAR_DEPTH: f64 = 1e-9;
+
+/// World units of a distance per pixel, at least (a plane seen edge-on has no footprint):
+/// keeps a soft cut edge's width finite.
+pub const PIXEL_SCALE_FLOOR: f64 = 1e-12;
+
+/// Overlap (pixels) a source pixel keeps in a box-filter resample at least, and the floor
+/// of a resampled pixel's total weight: only keeps an empty overlap from dividing by zero.
+pub const RESAMPLE_OVERLAP_FLOOR: f64 = 1e-6;
+/// See [`RESAMPLE_OVERLAP_FLOOR`].
+pub const RESAMPLE_WEIGHT_FLOOR: f64 = 1e-12;
+
+/// Half the diagonal (world units) default views frame at least, so a model of zero size
+/// still gets cameras at a positive distance.
+pub const MIN_FRAMED_RADIUS: f64 = 1e-6;
+
+/// Coverage of a soft image's pixel below which its grey level (premultiplied shade over
+/// coverage) is undefined and taken as 0.
+pub const COVERAGE_FLOOR: f32 = 1e-6;
+
 // ---- fitting (losses, optimisers, schedules) ---------------------------------------------

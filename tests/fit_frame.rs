@@ -51,7 +51,7 @@ fn a_part_just_outside_the_picture_still_costs() {
     truth[slot("back.z")] = 7.5;
     truth[slot("back.height")] = 1.0;
     let (lo, hi) = m.bounds().unwrap();
-    let cams: Vec<Camera> = default_views(lo, hi, 2, 64, 64).split_off(1);
+    let cams: Vec<Camera> = default_views(lo, hi, 2, 64, 64).unwrap().split_off(1);
     let scene = p.scene(&truth);
     let targets: Vec<Target> = cams
         .iter()
@@ -64,8 +64,7 @@ fn a_part_just_outside_the_picture_still_costs() {
     let cam = &cams[0];
     let f = cam.frame();
     let ray = f.ray(cam.width as f64 + 8.0, cam.height as f64 / 2.0);
-    let along = reparamc::render::camera::norm(reparamc::render::camera::sub(cam.center, cam.eye))
-        / reparamc::render::camera::dot(ray.dir, f.forward);
+    let along = (cam.center - cam.eye).length() / ray.dir.dot(f.forward);
     let mut outside = truth.clone();
     for (k, axis) in ["x", "y", "z"].iter().enumerate() {
         outside[slot(&format!("back.{axis}"))] = ray.origin[k] + along * ray.dir[k];

@@ -1,11 +1,11 @@
 //! The fit's gradient agrees with finite differences of its loss.
 
 use reparamc::fit::Parametric;
-use reparamc::fit::loss::{LossSpec, Target};
+use reparamc::fit::loss::{LossSpec, Target, image_loss};
+use reparamc::render::CpuBackend;
 use reparamc::render::camera::{Camera, default_views};
 use reparamc::render::scene::DEFAULT_SHADE;
 use reparamc::render::soft::prepare_view;
-use reparamc::render::{Backend, CpuBackend};
 use std::path::PathBuf;
 
 fn model(rel: &str) -> reparamc::ir::Model {
@@ -33,7 +33,16 @@ fn loss(
         .map(|c| prepare_view(&scene, c, Some(sigma)))
         .collect();
     let shades = vec![DEFAULT_SHADE; cams.len()];
-    let out = CpuBackend.loss(&scene, &views, sigma, &shades, targets, spec, grad);
+    let out = image_loss(
+        &mut CpuBackend,
+        &scene,
+        &views,
+        sigma,
+        &shades,
+        targets,
+        spec,
+        grad,
+    );
     let g = if grad {
         p.chain(&out.dtheta)
     } else {
@@ -54,7 +63,7 @@ fn check(rel: &str, shading: f64, tolerance: f64, coloured: bool) {
     } else {
         (96, 80)
     };
-    let cams = default_views(lo, hi, 3, w, h);
+    let cams = default_views(lo, hi, 3, w, h).unwrap();
     p.fix_rings(&cams);
     let albedo: Vec<f64> = (0..m.parts.len())
         .map(|i| {

@@ -24,7 +24,7 @@ fn an_offset_leg_in_one_view_survives() {
     let p = Parametric::new(&m);
     let slot = |name: &str| m.slots.iter().position(|s| s.name == name).unwrap();
     let (lo, hi) = m.bounds().unwrap();
-    let cams = default_views(lo, hi, 5, 96, 96);
+    let cams = default_views(lo, hi, 5, 96, 96).unwrap();
     // The targets show the stool itself, except that the front view sees the left front
     // leg moved sideways by 60% of its width.
     let mut moved = p.x0.clone();

@@ -5,7 +5,7 @@
 #![cfg(feature = "gpu")]
 
 use reparamc::fit::Parametric;
-use reparamc::fit::loss::{LossSpec, Target};
+use reparamc::fit::loss::{LossSpec, Target, image_loss};
 use reparamc::render::camera::default_views;
 use reparamc::render::gpu::GpuBackend;
 use reparamc::render::scene::DEFAULT_SHADE;
@@ -44,7 +44,7 @@ fn cpu_and_wgpu_agree() {
         let m = model(rel);
         let p = Parametric::new(&m);
         let (lo, hi) = m.bounds().unwrap();
-        let cams = default_views(lo, hi, 3, 96, 80);
+        let cams = default_views(lo, hi, 3, 96, 80).unwrap();
         let albedo: Vec<f64> = (0..m.parts.len())
             .map(|i| 0.6 + 0.15 * (i % 4) as f64)
             .collect();
@@ -99,8 +99,12 @@ fn cpu_and_wgpu_agree() {
             .map(|c| prepare_view(&scene, c, Some(sigma)))
             .collect();
         let spec = LossSpec::default();
-        let la = cpu.loss(&scene, &views, sigma, &shades, &targets, &spec, true);
-        let lb = gpu.loss(&scene, &views, sigma, &shades, &targets, &spec, true);
+        let la = image_loss(
+            &mut cpu, &scene, &views, sigma, &shades, &targets, &spec, true,
+        );
+        let lb = image_loss(
+            &mut gpu, &scene, &views, sigma, &shades, &targets, &spec, true,
+        );
         let rel_err = (la.total() - lb.total()).abs() / la.total();
         assert!(
             rel_err < 1e-3,

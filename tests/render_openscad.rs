@@ -1,8 +1,9 @@
 //! Our cameras reproduce OpenSCAD's: every example rendered by `openscad` and by us from
 //! the same cameras (gimbal with roll, eye/center, orthographic) gives the same foreground.
 
+use glam::DVec3;
 use reparamc::fit::loss::Target;
-use reparamc::render::camera::{Camera, Projection, add, scale, sub};
+use reparamc::render::camera::{Camera, Projection};
 use reparamc::render::openscad::{self, OpenScadRender};
 use reparamc::render::scene::{DEFAULT_SHADE, Scene};
 use reparamc::render::soft::{prepare_view, render_view};
@@ -39,8 +40,9 @@ fn iou(a: &[bool], b: &[bool]) -> f64 {
 
 /// Three cameras around the model's bounds.
 fn cameras(lo: [f64; 3], hi: [f64; 3]) -> Vec<Camera> {
-    let c = scale(add(lo, hi), 0.5);
-    let r = reparamc::render::camera::norm(sub(hi, lo)) / 2.0;
+    let (lo, hi) = (DVec3::from(lo), DVec3::from(hi));
+    let c = (lo + hi) * 0.5;
+    let r = (hi - lo).length() / 2.0;
     let dist = r / (11.25f64).to_radians().sin() * 1.15;
     let g = Camera::from_openscad(
         "gimbal_roll",
@@ -50,7 +52,7 @@ fn cameras(lo: [f64; 3], hi: [f64; 3]) -> Vec<Camera> {
         120,
     )
     .unwrap();
-    let eye = add(c, [0.6 * dist, -0.7 * dist, 0.4 * dist]);
+    let eye = c + DVec3::new(0.6 * dist, -0.7 * dist, 0.4 * dist);
     let e = Camera::from_openscad(
         "eye",
         &[eye[0], eye[1], eye[2], c[0], c[1], c[2]],

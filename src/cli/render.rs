@@ -174,7 +174,10 @@ pub fn run(args: Args) -> ExitCode {
         if args.views == 0 {
             return input_error("E0703", "`--views 0`: nothing to render".into());
         }
-        default_views(lo, hi, args.views, size.0, size.1)
+        match default_views(lo, hi, args.views, size.0, size.1) {
+            Ok(v) => v,
+            Err(e) => return input_error("E0703", format!("the default views: {e}")),
+        }
     };
     let mut backend = choose_backend(args.backend);
     let views: Vec<_> = cameras

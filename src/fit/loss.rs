@@ -9,9 +9,16 @@
 //!
 //! `sharpen` is linear and symmetric (a Gaussian blur with zero padding), so the derivative
 //! of `‖sharpen(r)‖²` with respect to `r` is `2·sharpen(sharpen(r))`.
+//!
+//! The loss is the fit's, not the renderer's: [`ImageLoss`] is the
+//! [`ImageFunction`] the renderer evaluates and differentiates, and [`image_loss`] asks a
+//! backend for it.
 
 use crate::render::image::Rgb;
-use crate::render::soft::SoftImage;
+use crate::render::scene::{NSHADE, Scene};
+use crate::render::soft::{SoftImage, ViewPrep};
+use crate::render::{Backend, ImageFunction, ImageValue, ImageValues};
+use crate::tolerance::COVERAGE_FLOOR;
 
 /// How images are compared.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -100,7 +107,7 @@ impl Target {
             .m
             .iter()
             .zip(&img.s)
-            .map(|(&m, &s)| if m > 1e-6 { s / m } else { 0.0 })
+            .map(|(&m, &s)| if m > COVERAGE_FLOOR { s / m } else { 0.0 })
             .collect();
         Target {
             width: img.width,
@@ -120,7 +127,7 @@ impl Target {
         let grey = m
             .iter()
             .zip(&s)
-            .map(|(&m, &s)| if m > 1e-6 { s / m } else { 0.0 })
+            .map(|(&m, &s)| if m > COVERAGE_FLOOR { s / m } else { 0.0 })
             .collect();
         Target {
             width: w,
@@ -362,6 +369,44 @@ pub fn view_loss(render: &SoftImage, target: &Target, spec: &LossSpec, grad: boo
         gs = unpool(&gs, wk, hk);
     }
     ViewLoss { loss, gm, gs }
+}
+
+/// The image loss against one target per view, as a function the renderer differentiates.
+#[derive(Debug, Clone, Copy)]
+pub struct ImageLoss<'a> {
+    /// One per view, in view order (at least as many as the views evaluated).
+    pub targets: &'a [Target],
+    pub spec: &'a LossSpec,
+}
+
+impl ImageFunction for ImageLoss<'_> {
+    fn eval(&self, view: usize, image: &SoftImage, grad: bool) -> ImageValue {
+        let l = view_loss(image, &self.targets[view], self.spec, grad);
+        ImageValue {
+            value: l.loss,
+            dm: l.gm,
+            ds: l.gs,
+        }
+    }
+}
+
+/// The image loss of a scene's views against `targets` (edges of width `sigma`) and, with
+/// `grad`, its gradient per part parameter. Views beyond the targets (or the shades) are
+/// not rendered.
+#[allow(clippy::too_many_arguments)]
+pub fn image_loss(
+    backend: &mut dyn Backend,
+    scene: &Scene,
+    views: &[ViewPrep],
+    sigma: f64,
+    shades: &[[f64; NSHADE]],
+    targets: &[Target],
+    spec: &LossSpec,
+    grad: bool,
+) -> ImageValues {
+    let n = views.len().min(shades.len()).min(targets.len());
+    let f = ImageLoss { targets, spec };
+    backend.evaluate(scene, &views[..n], sigma, &shades[..n], &f, grad)
 }
 
 #[cfg(test)]

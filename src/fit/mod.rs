@@ -570,7 +570,16 @@ pub fn fit(
             level: opts.loss.level + pool,
             ..opts.loss
         };
-        backend.loss(&scene, &views, sigma, &look.shades, tgts, &spec, grad)
+        loss::image_loss(
+            backend,
+            &scene,
+            &views,
+            sigma,
+            &look.shades,
+            tgts,
+            &spec,
+            grad,
+        )
     };
     // Shading and albedos are fitted at full size, on the hard surface.
     let refit_shades = |backend: &mut dyn Backend, x: &[f64], look: &mut Look| {
@@ -641,9 +650,17 @@ pub fn fit(
                 .iter()
                 .map(|c| prepare_view(&scene, c, Some(sigma)))
                 .collect();
-            backend
-                .loss(&scene, &views, sigma, &look.shades, targets, &spec, false)
-                .total()
+            loss::image_loss(
+                backend,
+                &scene,
+                &views,
+                sigma,
+                &look.shades,
+                targets,
+                &spec,
+                false,
+            )
+            .total()
         };
         x = proportions::search(x, &weights, &mut coarse, &valid);
         refit_shades(backend, &x, &mut look);

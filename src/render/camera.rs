@@ -13,40 +13,25 @@
 //! - the eye form `ex,ey,ez,cx,cy,cz`: from the eye towards the center, with no roll (+z
 //!   up on screen).
 //!
-//! `cameras.json` is a list of cameras (or `{"cameras": [...]}`); see [`CameraSpec`].
+//! `cameras.json` is a list of cameras (or `{"cameras": [...]}`); see [`CameraSpec`]. It
+//! writes points as arrays of three numbers ([`Vec3`]); cameras and frames compute with
+//! `glam`'s `DVec3`.
 
+use crate::tolerance::{
+    LENGTH_FLOOR, MIN_FRAMED_RADIUS, NEAR_DEPTH, PARALLEL_SINE, RENDER_ROUNDOFF,
+};
+use glam::{DMat3, DVec3};
 use serde::{Deserialize, Serialize};
 
 /// OpenSCAD's field of view (degrees, vertical).
 pub const OPENSCAD_FOV: f64 = 22.5;
 
+/// A point or direction as three numbers, as `cameras.json` writes it.
 pub type Vec3 = [f64; 3];
 
-pub fn sub(a: Vec3, b: Vec3) -> Vec3 {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-pub fn add(a: Vec3, b: Vec3) -> Vec3 {
-    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
-}
-pub fn scale(a: Vec3, k: f64) -> Vec3 {
-    [a[0] * k, a[1] * k, a[2] * k]
-}
-pub fn dot(a: Vec3, b: Vec3) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-pub fn cross(a: Vec3, b: Vec3) -> Vec3 {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-pub fn norm(a: Vec3) -> f64 {
-    dot(a, a).sqrt()
-}
-pub fn normalize(a: Vec3) -> Vec3 {
-    let n = norm(a);
-    if n > 0.0 { scale(a, 1.0 / n) } else { a }
+/// `a` scaled to unit length (`a` itself when it has none).
+pub(crate) fn unit(a: DVec3) -> DVec3 {
+    a.normalize_or(a)
 }
 
 /// How the camera projects.
@@ -64,10 +49,10 @@ pub enum Projection {
 #[derive(Debug, Clone, PartialEq)]
 pub struct Camera {
     pub name: String,
-    pub eye: Vec3,
-    pub center: Vec3,
+    pub eye: DVec3,
+    pub center: DVec3,
     /// The up direction on screen (made orthogonal to the view direction).
-    pub up: Vec3,
+    pub up: DVec3,
     /// Vertical field of view, degrees.
     pub fov: f64,
     pub projection: Projection,
@@ -78,11 +63,11 @@ pub struct Camera {
 /// The camera's orthonormal frame and projection constants, ready for per-pixel work.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Frame {
-    pub eye: Vec3,
-    pub right: Vec3,
-    pub up: Vec3,
+    pub eye: DVec3,
+    pub right: DVec3,
+    pub up: DVec3,
     /// Unit view direction (from the eye towards the center).
-    pub forward: Vec3,
+    pub forward: DVec3,
     /// Pixels per unit at depth 1 (perspective) or per world unit (orthographic).
     pub focal: f64,
     pub ortho: bool,
@@ -93,8 +78,8 @@ pub struct Frame {
 /// A ray: `origin + t · dir`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PixelRay {
-    pub origin: Vec3,
-    pub dir: Vec3,
+    pub origin: DVec3,
+    pub dir: DVec3,
 }
 
 /// Problems with a camera description.
@@ -109,20 +94,6 @@ pub enum CameraError {
 }
 
 impl Camera {
-    /// A camera looking from `eye` at `center` with `up`, OpenSCAD's field of view.
-    pub fn look_at(name: &str, eye: Vec3, center: Vec3, up: Vec3, width: u32, height: u32) -> Self {
-        Camera {
-            name: name.to_string(),
-            eye,
-            center,
-            up,
-            fov: OPENSCAD_FOV,
-            projection: Projection::Perspective,
-            width,
-            height,
-        }
-    }
-
     /// OpenSCAD's `--camera` numbers (7: gimbal, 6: eye and center).
     pub fn from_openscad(
         name: &str,
@@ -134,12 +105,12 @@ impl Camera {
         let (eye, center, up) = match *params {
             [tx, ty, tz, rx, ry, rz, dist] => {
                 let r = rotation_xyz(rx, ry, rz);
-                let back = mat_col(&r, 2);
-                let up = mat_col(&r, 1);
-                let center = [tx, ty, tz];
-                (add(center, scale(back, dist)), center, up)
+                let back = r.col(2);
+                let up = r.col(1);
+                let center = DVec3::new(tx, ty, tz);
+                (center + back * dist, center, up)
             }
-            [ex, ey, ez, cx, cy, cz] => ([ex, ey, ez], [cx, cy, cz], [0.0, 0.0, 1.0]),
+            [ex, ey, ez, cx, cy, cz] => (DVec3::new(ex, ey, ez), DVec3::new(cx, cy, cz), DVec3::Z),
             _ => return Err(CameraError::Count(params.len())),
         };
         let cam = Camera {
@@ -180,7 +151,7 @@ impl Camera {
     /// OpenSCAD's gimbal form of this camera: `tx,ty,tz,rx,ry,rz,dist` (any roll included).
     pub fn openscad_gimbal(&self) -> [f64; 7] {
         let f = self.frame();
-        let back = scale(f.forward, -1.0);
+        let back = f.forward * -1.0;
         // R = Rz(γ)·Ry(β)·Rx(α) with columns (right, up, back).
         let r = [
             [f.right[0], f.up[0], back[0]],
@@ -188,13 +159,13 @@ impl Camera {
             [f.right[2], f.up[2], back[2]],
         ];
         let beta = (-r[2][0]).clamp(-1.0, 1.0).asin();
-        let (alpha, gamma) = if r[2][0].abs() < 1.0 - 1e-12 {
+        let (alpha, gamma) = if r[2][0].abs() < 1.0 - RENDER_ROUNDOFF {
             (r[2][1].atan2(r[2][2]), r[1][0].atan2(r[0][0]))
         } else {
             // Gimbal lock: put the whole turn about x.
             ((-r[1][2]).atan2(r[1][1]), 0.0)
         };
-        let d = norm(sub(self.eye, self.center));
+        let d = (self.eye - self.center).length();
         [
             self.center[0],
             self.center[1],
@@ -226,23 +197,21 @@ impl Camera {
     /// Checks that the camera describes a view: distinct eye and center, an up direction
     /// not along the view, a sensible field of view and a non-empty image.
     pub fn validate(&self) -> Result<(), CameraError> {
-        let all = self.eye.iter().chain(&self.center).chain(&self.up);
-        if !all.clone().all(|v| v.is_finite()) || !self.fov.is_finite() {
+        let all = [self.eye, self.center, self.up];
+        if !all.iter().all(|v| v.is_finite()) || !self.fov.is_finite() {
             return Err(CameraError::Invalid(format!(
                 "camera `{}` has a number that is not finite",
                 self.name
             )));
         }
-        let dir = sub(self.center, self.eye);
-        if norm(dir) <= 0.0 {
+        let dir = self.center - self.eye;
+        if dir.length() <= 0.0 {
             return Err(CameraError::Invalid(format!(
                 "camera `{}`: eye and center are the same point",
                 self.name
             )));
         }
-        if norm(cross(normalize(dir), normalize(self.up))) < 1e-9 && norm(self.up) > 0.0 {
-            // Handled by frame(): an up along the view falls back to another axis.
-        }
+        // An up along the view is no error: frame() falls back to another axis.
         if !(self.fov > 0.0 && self.fov < 180.0) {
             return Err(CameraError::Invalid(format!(
                 "camera `{}`: field of view {}° is not between 0 and 180",
@@ -261,22 +230,23 @@ impl Camera {
     /// The orthonormal frame. An `up` parallel to the view direction falls back to +y
     /// (or +x), as OpenSCAD does when looking straight down.
     pub fn frame(&self) -> Frame {
-        let forward = normalize(sub(self.center, self.eye));
-        let mut right = cross(forward, self.up);
-        if norm(right) < 1e-9 * norm(self.up).max(1e-300) || norm(self.up) == 0.0 {
-            right = cross(forward, [0.0, 1.0, 0.0]);
-            if norm(right) < 1e-9 {
-                right = cross(forward, [1.0, 0.0, 0.0]);
+        let forward = unit(self.center - self.eye);
+        let mut right = forward.cross(self.up);
+        let up_length = self.up.length();
+        if right.length() < PARALLEL_SINE * up_length.max(LENGTH_FLOOR) || up_length == 0.0 {
+            right = forward.cross(DVec3::Y);
+            if right.length() < PARALLEL_SINE {
+                right = forward.cross(DVec3::X);
             }
         }
-        let right = normalize(right);
-        let up = cross(right, forward);
+        let right = unit(right);
+        let up = right.cross(forward);
         let half = (self.fov.to_radians() / 2.0).tan();
         let h2 = self.height as f64 / 2.0;
         let (focal, ortho) = match self.projection {
             Projection::Perspective => (h2 / half, false),
             Projection::Orthographic => {
-                let d = norm(sub(self.center, self.eye));
+                let d = (self.center - self.eye).length();
                 (h2 / (d * half), true)
             }
         };
@@ -314,7 +284,7 @@ impl Camera {
         if f.ortho {
             1.0 / f.focal
         } else {
-            norm(sub(self.eye, self.center)) / f.focal
+            (self.eye - self.center).length() / f.focal
         }
     }
 
@@ -334,25 +304,13 @@ impl Frame {
         let x = px - self.width as f64 / 2.0;
         let y = self.height as f64 / 2.0 - py;
         if self.ortho {
-            let origin = add(
-                self.eye,
-                add(
-                    scale(self.right, x / self.focal),
-                    scale(self.up, y / self.focal),
-                ),
-            );
+            let origin = self.eye + (self.right * (x / self.focal) + self.up * (y / self.focal));
             PixelRay {
                 origin,
                 dir: self.forward,
             }
         } else {
-            let dir = add(
-                self.forward,
-                add(
-                    scale(self.right, x / self.focal),
-                    scale(self.up, y / self.focal),
-                ),
-            );
+            let dir = self.forward + (self.right * (x / self.focal) + self.up * (y / self.focal));
             PixelRay {
                 origin: self.eye,
                 dir,
@@ -362,58 +320,48 @@ impl Frame {
 
     /// Projects a world point to pixel coordinates and returns them with the derivative
     /// `∂(px, py)/∂P` (2×3); `None` behind (or too near) the eye.
-    pub fn project(&self, p: Vec3) -> Option<([f64; 2], [[f64; 3]; 2])> {
-        let v = sub(p, self.eye);
-        let x = dot(self.right, v);
-        let y = dot(self.up, v);
+    pub fn project(&self, p: DVec3) -> Option<([f64; 2], [DVec3; 2])> {
+        let v = p - self.eye;
+        let x = self.right.dot(v);
+        let y = self.up.dot(v);
         let w2 = self.width as f64 / 2.0;
         let h2 = self.height as f64 / 2.0;
         if self.ortho {
             let f = self.focal;
-            return Some((
-                [w2 + f * x, h2 - f * y],
-                [scale(self.right, f), scale(self.up, -f)],
-            ));
+            return Some(([w2 + f * x, h2 - f * y], [self.right * f, self.up * -f]));
         }
-        let z = dot(self.forward, v);
-        if z <= 1e-9 {
+        let z = self.forward.dot(v);
+        if z <= NEAR_DEPTH {
             return None;
         }
         let f = self.focal;
         let u = [w2 + f * x / z, h2 - f * y / z];
-        let du = sub(
-            scale(self.right, f / z),
-            scale(self.forward, f * x / (z * z)),
-        );
-        let dv = sub(scale(self.forward, f * y / (z * z)), scale(self.up, f / z));
+        let du = self.right * (f / z) - self.forward * (f * x / (z * z));
+        let dv = self.forward * (f * y / (z * z)) - self.up * (f / z);
         Some((u, [du, dv]))
     }
 
     /// Depth of a world point along the view direction.
-    pub fn depth(&self, p: Vec3) -> f64 {
-        dot(self.forward, sub(p, self.eye))
+    pub fn depth(&self, p: DVec3) -> f64 {
+        self.forward.dot(p - self.eye)
     }
 
     /// A world direction in eye coordinates (x right, y up, z towards the viewer).
-    pub fn to_eye(&self, n: Vec3) -> Vec3 {
-        [dot(n, self.right), dot(n, self.up), -dot(n, self.forward)]
+    pub fn to_eye(&self, n: DVec3) -> DVec3 {
+        DVec3::new(n.dot(self.right), n.dot(self.up), -n.dot(self.forward))
     }
 }
 
-/// `Rz(z)·Ry(y)·Rx(x)` (degrees), rows.
-fn rotation_xyz(x: f64, y: f64, z: f64) -> [[f64; 3]; 3] {
+/// `Rz(z)·Ry(y)·Rx(x)` (degrees).
+fn rotation_xyz(x: f64, y: f64, z: f64) -> DMat3 {
     let (sx, cx) = x.to_radians().sin_cos();
     let (sy, cy) = y.to_radians().sin_cos();
     let (sz, cz) = z.to_radians().sin_cos();
-    [
-        [cz * cy, cz * sy * sx - sz * cx, cz * sy * cx + sz * sx],
-        [sz * cy, sz * sy * sx + cz * cx, sz * sy * cx - cz * sx],
-        [-sy, cy * sx, cy * cx],
-    ]
-}
-
-fn mat_col(m: &[[f64; 3]; 3], j: usize) -> Vec3 {
-    [m[0][j], m[1][j], m[2][j]]
+    DMat3::from_rows(
+        DVec3::new(cz * cy, cz * sy * sx - sz * cx, cz * sy * cx + sz * sx),
+        DVec3::new(sz * cy, sz * sy * sx + cz * cx, sz * sy * cx - cz * sx),
+        DVec3::new(-sy, cy * sx, cy * cx),
+    )
 }
 
 /// One entry of `cameras.json`.
@@ -461,9 +409,9 @@ impl CameraSpec {
     pub fn of(cam: &Camera, image: Option<String>) -> CameraSpec {
         CameraSpec {
             name: cam.name.clone(),
-            eye: Some(cam.eye),
-            center: Some(cam.center),
-            up: Some(cam.up),
+            eye: Some(cam.eye.to_array()),
+            center: Some(cam.center.to_array()),
+            up: Some(cam.up.to_array()),
             openscad: None,
             fov: Some(cam.fov),
             projection: cam.projection,
@@ -506,9 +454,9 @@ impl CameraSpec {
             }
             (None, Some(eye), Some(center)) => Camera {
                 name: self.name.clone(),
-                eye,
-                center,
-                up: self.up.unwrap_or([0.0, 0.0, 1.0]),
+                eye: DVec3::from(eye),
+                center: DVec3::from(center),
+                up: self.up.map_or(DVec3::Z, DVec3::from),
                 fov: OPENSCAD_FOV,
                 projection: self.projection,
                 width: w,
@@ -564,8 +512,15 @@ pub fn cameras_json(specs: &[CameraSpec]) -> String {
 }
 
 /// `n` views around a bounding box, framed so the whole box is visible with a margin:
-/// OpenSCAD's default view first, then front, right, back-left from above, and top.
-pub fn default_views(lo: Vec3, hi: Vec3, n: usize, width: u32, height: u32) -> Vec<Camera> {
+/// OpenSCAD's default view first, then front, right, back-left from above, and top. An
+/// error when the box is too large (or not finite) to frame, or the image size is invalid.
+pub fn default_views(
+    lo: Vec3,
+    hi: Vec3,
+    n: usize,
+    width: u32,
+    height: u32,
+) -> Result<Vec<Camera>, CameraError> {
     const VIEWS: [(&str, f64, f64); 8] = [
         ("default", 55.0, 25.0),
         ("front", 80.0, 0.0),
@@ -576,12 +531,18 @@ pub fn default_views(lo: Vec3, hi: Vec3, n: usize, width: u32, height: u32) -> V
         ("back", 70.0, 180.0),
         ("front_left", 65.0, -35.0),
     ];
-    let center = scale(add(lo, hi), 0.5);
-    let radius = (norm(sub(hi, lo)) / 2.0).max(1e-6);
+    let (low, high) = (DVec3::from(lo), DVec3::from(hi));
+    let center = (low + high) * 0.5;
+    let radius = ((high - low).length() / 2.0).max(MIN_FRAMED_RADIUS);
     let aspect = width as f64 / height as f64;
     let half = (OPENSCAD_FOV.to_radians() / 2.0).tan() * aspect.min(1.0);
     // Distance at which a sphere around the box fits with a 10% margin.
     let dist = radius * 1.1 / half.atan().sin();
+    if !(center.is_finite() && dist.is_finite()) {
+        return Err(CameraError::Invalid(format!(
+            "a box from {lo:?} to {hi:?} is too large to frame with a camera"
+        )));
+    }
     (0..n)
         .map(|i| {
             let (name, rx, rz) = VIEWS[i % VIEWS.len()];
@@ -593,7 +554,6 @@ pub fn default_views(lo: Vec3, hi: Vec3, n: usize, width: u32, height: u32) -> V
             let rz = rz + 360.0 * (i / VIEWS.len()) as f64 / 7.0;
             let params = [center[0], center[1], center[2], rx, 0.0, rz, dist];
             Camera::from_openscad(&name, &params, Projection::Perspective, width, height)
-                .expect("seven finite numbers make a camera")
         })
         .collect()
 }
@@ -602,7 +562,7 @@ pub fn default_views(lo: Vec3, hi: Vec3, n: usize, width: u32, height: u32) -> V
 mod tests {
     use super::*;
 
-    fn close(a: Vec3, b: Vec3) -> bool {
+    fn close(a: DVec3, b: [f64; 3]) -> bool {
         (0..3).all(|i| (a[i] - b[i]).abs() < 1e-9)
     }
 
@@ -620,7 +580,7 @@ mod tests {
             let b = c.with_border(8);
             assert_eq!((b.width, b.height), (80, 64));
             let (f, g) = (c.frame(), b.frame());
-            for p in [[0.0, 0.0, 0.0], [5.0, -3.0, 7.0], [-4.0, 6.0, 1.0]] {
+            for p in [[0.0, 0.0, 0.0], [5.0, -3.0, 7.0], [-4.0, 6.0, 1.0]].map(DVec3::from) {
                 let (u, v) = (f.project(p).unwrap().0, g.project(p).unwrap().0);
                 assert!((v[0] - u[0] - 8.0).abs() < 1e-9 && (v[1] - u[1] - 8.0).abs() < 1e-9);
             }
@@ -681,7 +641,7 @@ mod tests {
         .unwrap();
         let f = c.frame();
         let r = f.ray(10.5, 20.25);
-        let p = add(r.origin, scale(r.dir, 280.0));
+        let p = r.origin + r.dir * 280.0;
         let (u, _) = f.project(p).unwrap();
         assert!((u[0] - 10.5).abs() < 1e-9 && (u[1] - 20.25).abs() < 1e-9);
     }

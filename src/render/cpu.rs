@@ -8,6 +8,7 @@ use super::camera::Camera;
 use super::soft::HardImage;
 use crate::geom::{Ray, Solid};
 use crate::ir::{CsgNode, Part};
+use glam::DVec3;
 use rayon::prelude::*;
 
 /// The exact visible surface per pixel (`item` is 0 where a surface is seen, −1 elsewhere).
@@ -22,15 +23,18 @@ pub fn render_hard(parts: &[Part], csg: &CsgNode, camera: &Camera) -> HardImage 
                 .map(|x| {
                     let r = frame.ray(x as f64 + 0.5, y as f64 + 0.5);
                     let ray = Ray {
-                        origin: r.origin,
-                        dir: r.dir,
+                        origin: r.origin.to_array(),
+                        dir: r.dir.to_array(),
                     };
                     let hit = solid
                         .ray(&ray)
                         .into_iter()
                         .find(|iv| iv.t1 > 0.0 && iv.t0 > 0.0);
                     match hit {
-                        Some(iv) => (0, frame.to_eye(iv.n0).map(|v| v as f32), iv.t0 as f32),
+                        Some(iv) => {
+                            let n = frame.to_eye(DVec3::from(iv.n0)).as_vec3().to_array();
+                            (0, n, iv.t0 as f32)
+                        }
                         None => (-1, [0.0; 3], f32::INFINITY),
                     }
                 })

@@ -2,6 +2,7 @@
 //! pictures.
 
 use super::soft::SoftImage;
+use crate::tolerance::{RESAMPLE_OVERLAP_FLOOR, RESAMPLE_WEIGHT_FLOOR};
 use std::path::Path;
 
 /// An RGB image with channels in `0..=1`, rows top to bottom.
@@ -136,8 +137,10 @@ impl Rgb {
                 let iy1 = (y1.ceil() as u32).min(self.height).max(iy0 + 1);
                 for iy in iy0..iy1.min(self.height) {
                     for ix in ix0..ix1.min(self.width) {
-                        let wx = (x1.min(ix as f64 + 1.0) - x0.max(ix as f64)).max(1e-6);
-                        let wy = (y1.min(iy as f64 + 1.0) - y0.max(iy as f64)).max(1e-6);
+                        let wx = (x1.min(ix as f64 + 1.0) - x0.max(ix as f64))
+                            .max(RESAMPLE_OVERLAP_FLOOR);
+                        let wy = (y1.min(iy as f64 + 1.0) - y0.max(iy as f64))
+                            .max(RESAMPLE_OVERLAP_FLOOR);
                         let c = self.get(ix, iy);
                         for k in 0..3 {
                             acc[k] += wx * wy * c[k] as f64;
@@ -145,7 +148,8 @@ impl Rgb {
                         wsum += wx * wy;
                     }
                 }
-                out.data[(y * width + x) as usize] = acc.map(|v| (v / wsum.max(1e-12)) as f32);
+                out.data[(y * width + x) as usize] =
+                    acc.map(|v| (v / wsum.max(RESAMPLE_WEIGHT_FLOOR)) as f32);
             }
         }
         out

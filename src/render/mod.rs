@@ -3,9 +3,14 @@
 //! One interface ([`Backend`]), two implementations: [`CpuBackend`] (the reference, in Rust)
 //! and, with the `gpu` feature, `gpu::GpuBackend` (wgpu with the WGSL in `shaders/`; Mesa's
 //! lavapipe runs it on a CPU). Both compute the same soft channels from the same prepared
-//! views ([`soft::ViewPrep`]), the same loss, and the gradient of the loss with respect to
-//! every part parameter. `cpu` holds an independent hard ray caster over `geom`'s exact
-//! ray intervals, used as the reference picture.
+//! views ([`soft::ViewPrep`]) and, for any [`ImageFunction`] of those images (the fit's
+//! image loss, say), its values and its gradient with respect to every part parameter,
+//! summed in view order by the one accumulation both share. `cpu` holds an independent
+//! hard ray caster over `geom`'s exact ray intervals, used as the reference picture.
+//!
+//! The renderer knows no optimiser: it imports only `geom` and `ir` (and the crate-root
+//! `tolerance`); what an image is compared with belongs to `fit`. Vector and matrix maths
+//! is `glam`'s (`DVec3`, `DMat3`), written so every float is the same as before.
 
 pub mod camera;
 pub mod cpu;
@@ -16,19 +21,39 @@ pub mod openscad;
 pub mod scene;
 pub mod soft;
 
-use crate::fit::loss::{LossSpec, Target, view_loss};
 use scene::{NSHADE, NTHETA, Scene};
-use soft::{HardImage, SoftImage, ViewPrep};
+use soft::{Entries, HardImage, SoftImage, ViewPrep};
 
-/// A loss value per view and, when asked, its gradient per part parameter.
+/// A scalar function of each view's soft image (an image loss, say) with its derivatives
+/// with respect to the image's channels. The renderer evaluates it on the images it
+/// renders and chains the derivatives to every part parameter; what the function compares
+/// the images with is its own business.
+pub trait ImageFunction: Sync {
+    /// The value at view `view`'s soft image and, with `grad`, its derivatives with respect
+    /// to the channels `M` and `S` of every pixel (empty without `grad`).
+    fn eval(&self, view: usize, image: &SoftImage, grad: bool) -> ImageValue;
+}
+
+/// An [`ImageFunction`]'s value at one image and its per-pixel derivatives.
 #[derive(Debug, Clone, PartialEq)]
-pub struct LossOut {
+pub struct ImageValue {
+    pub value: f64,
+    /// `∂value/∂M` per pixel (empty when no gradient was asked for).
+    pub dm: Vec<f32>,
+    /// `∂value/∂S` per pixel (empty when no gradient was asked for).
+    pub ds: Vec<f32>,
+}
+
+/// An [`ImageFunction`]'s value per view and, when asked, the gradient of their sum per
+/// part parameter.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ImageValues {
     pub per_view: Vec<f64>,
-    /// `∂loss/∂θ` per part (empty when no gradient was asked for).
+    /// `∂(Σ per_view)/∂θ` per part (empty when no gradient was asked for).
     pub dtheta: Vec<[f64; NTHETA]>,
 }
 
-impl LossOut {
+impl ImageValues {
     pub fn total(&self) -> f64 {
         self.per_view.iter().sum()
     }
@@ -48,18 +73,61 @@ pub trait Backend {
         shades: &[[f64; NSHADE]],
     ) -> Vec<(SoftImage, HardImage)>;
 
-    /// The image loss against `targets` and (with `grad`) its gradient.
-    #[allow(clippy::too_many_arguments)]
-    fn loss(
+    /// `f` at every view's soft image (edges of width `sigma`) and, with `grad`, the
+    /// gradient of its sum with respect to every part parameter.
+    fn evaluate(
         &mut self,
         scene: &Scene,
         views: &[ViewPrep],
         sigma: f64,
         shades: &[[f64; NSHADE]],
-        targets: &[Target],
-        spec: &LossSpec,
+        f: &dyn ImageFunction,
         grad: bool,
-    ) -> LossOut;
+    ) -> ImageValues;
+}
+
+/// `f` at view `k`'s image and (with `grad`) its `∂/∂θ` per part through the view's
+/// gradient entries.
+fn view_value(
+    scene: &Scene,
+    prep: &ViewPrep,
+    k: usize,
+    image: &SoftImage,
+    entries: &Entries,
+    f: &dyn ImageFunction,
+    grad: bool,
+) -> (f64, Vec<[f64; NTHETA]>) {
+    let v = f.eval(k, image, grad);
+    let g = if grad {
+        soft::theta_gradient(scene, prep, entries, &v.dm, &v.ds)
+    } else {
+        Vec::new()
+    };
+    (v.value, g)
+}
+
+/// Per-view values and gradients summed in view order (the one accumulation both backends
+/// use, so they add in the same order).
+fn sum_views(
+    parts: usize,
+    grad: bool,
+    views: impl IntoIterator<Item = (f64, Vec<[f64; NTHETA]>)>,
+) -> ImageValues {
+    let mut per_view = Vec::new();
+    let mut dtheta = if grad {
+        vec![[0.0; NTHETA]; parts]
+    } else {
+        Vec::new()
+    };
+    for (value, g) in views {
+        per_view.push(value);
+        for (acc, gp) in dtheta.iter_mut().zip(g) {
+            for k in 0..NTHETA {
+                acc[k] += gp[k];
+            }
+        }
+    }
+    ImageValues { per_view, dtheta }
 }
 
 /// The reference backend.
@@ -88,47 +156,26 @@ impl Backend for CpuBackend {
             .collect()
     }
 
-    fn loss(
+    fn evaluate(
         &mut self,
         scene: &Scene,
         views: &[ViewPrep],
         sigma: f64,
         shades: &[[f64; NSHADE]],
-        targets: &[Target],
-        spec: &LossSpec,
+        f: &dyn ImageFunction,
         grad: bool,
-    ) -> LossOut {
+    ) -> ImageValues {
         use rayon::prelude::*;
         // Views in parallel (each also renders its rows in parallel); summed in view order.
         let outs: Vec<(f64, Vec<[f64; NTHETA]>)> = views
             .par_iter()
             .zip(shades.par_iter())
-            .zip(targets.par_iter())
-            .map(|((v, &sh), t)| {
+            .enumerate()
+            .map(|(k, (v, &sh))| {
                 let (img, _, entries) = soft::render_view(scene, v, Some(sigma), sh, grad);
-                let l = view_loss(&img, t, spec, grad);
-                let g = if grad {
-                    soft::theta_gradient(scene, v, &entries, &l.gm, &l.gs)
-                } else {
-                    Vec::new()
-                };
-                (l.loss, g)
+                view_value(scene, v, k, &img, &entries, f, grad)
             })
             .collect();
-        let mut per_view = Vec::with_capacity(views.len());
-        let mut dtheta = if grad {
-            vec![[0.0; NTHETA]; scene.parts.len()]
-        } else {
-            Vec::new()
-        };
-        for (loss, g) in outs {
-            per_view.push(loss);
-            for (acc, gp) in dtheta.iter_mut().zip(g) {
-                for k in 0..NTHETA {
-                    acc[k] += gp[k];
-                }
-            }
-        }
-        LossOut { per_view, dtheta }
+        sum_views(scene.parts.len(), grad, outs)
     }
 }

@@ -155,7 +155,7 @@ pub fn case_cameras(
     } else {
         target.bounds().unwrap()
     };
-    default_views(lo, hi, views, size, size)
+    default_views(lo, hi, views, size, size).unwrap()
 }
 
 /// Renders the targets with OpenSCAD, fits, and scores the fit.

@@ -2,8 +2,10 @@
 //! hull (counter-clockwise in pixels), a pixel's soft coverage of that hull, and the
 //! jacobians from hull vertices back to the part's parameters.
 
-use super::{CUTOFF, Kind, NTHETA, PartGeom, mat_vec};
-use crate::render::camera::{Frame, Vec3, cross, dot, norm, normalize};
+use super::{CUTOFF, Kind, NTHETA, PartGeom};
+use crate::render::camera::{Frame, unit};
+use crate::tolerance::{NEAR_DEPTH, PARALLEL_SINE, RENDER_ROUNDOFF};
+use glam::DVec3;
 
 /// Tolerance (pixels) of polygonal silhouettes of curved parts.
 const CHORD_TOLERANCE: f64 = 0.05;
@@ -12,8 +14,8 @@ const CHORD_TOLERANCE: f64 = 0.05;
 /// to the three primitive parameters.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Sample {
-    pub local: Vec3,
-    pub dprim: [Vec3; 3],
+    pub local: DVec3,
+    pub dprim: [DVec3; 3],
 }
 
 /// A part's silhouette in one view: a convex polygon (counter-clockwise in pixel
@@ -141,11 +143,11 @@ pub fn logistic(x: f64) -> f64 {
 
 /// The local sample points whose projections bound the part's silhouette in this view.
 pub fn samples(p: &PartGeom, frame: &Frame) -> Vec<Sample> {
-    let zero = [0.0; 3];
+    let zero = DVec3::ZERO;
     match p.kind {
         Kind::Box => (0..8)
             .map(|c| {
-                let mut local = [0.0; 3];
+                let mut local = DVec3::ZERO;
                 let mut dprim = [zero; 3];
                 for a in 0..3 {
                     let high = c >> a & 1 == 1;
@@ -169,12 +171,12 @@ pub fn samples(p: &PartGeom, frame: &Frame) -> Vec<Sample> {
                 let phi = std::f64::consts::TAU * (k as f64 + 0.5) / n as f64;
                 let (s, c) = phi.sin_cos();
                 out.push(Sample {
-                    local: [p.r1 * c, p.r1 * s, z0],
-                    dprim: [[0.0, 0.0, dz0], [c, s, 0.0], zero],
+                    local: DVec3::new(p.r1 * c, p.r1 * s, z0),
+                    dprim: [DVec3::new(0.0, 0.0, dz0), DVec3::new(c, s, 0.0), zero],
                 });
                 out.push(Sample {
-                    local: [p.r2 * c, p.r2 * s, z1],
-                    dprim: [[0.0, 0.0, dz1], zero, [c, s, 0.0]],
+                    local: DVec3::new(p.r2 * c, p.r2 * s, z1),
+                    dprim: [DVec3::new(0.0, 0.0, dz1), zero, DVec3::new(c, s, 0.0)],
                 });
             }
             out
@@ -184,36 +186,31 @@ pub fn samples(p: &PartGeom, frame: &Frame) -> Vec<Sample> {
             let n = ring_count(p, frame, r);
             // The tangency circle seen from the eye (or along the view, orthographic).
             let (axis, center, radius) = if frame.ortho {
-                (normalize(p.dir_to_local(frame.forward)), [0.0; 3], r)
+                (unit(p.dir_to_local(frame.forward)), DVec3::ZERO, r)
             } else {
                 let e = p.to_local(frame.eye);
-                let dist = norm(e);
-                if dist <= r * (1.0 + 1e-9) {
+                let dist = e.length();
+                if dist <= r * (1.0 + PARALLEL_SINE) {
                     return Vec::new();
                 }
                 let f = r * r / (dist * dist);
-                let center = [e[0] * f, e[1] * f, e[2] * f];
-                (normalize(e), center, r * (1.0 - f).sqrt())
+                (unit(e), e * f, r * (1.0 - f).sqrt())
             };
             let helper = if axis[0].abs() < 0.9 {
-                [1.0, 0.0, 0.0]
+                DVec3::X
             } else {
-                [0.0, 1.0, 0.0]
+                DVec3::Y
             };
-            let u = normalize(cross(axis, helper));
-            let v = cross(axis, u);
+            let u = unit(axis.cross(helper));
+            let v = axis.cross(u);
             (0..n)
                 .map(|k| {
                     let phi = std::f64::consts::TAU * (k as f64 + 0.5) / n as f64;
                     let (s, c) = phi.sin_cos();
-                    let local = [
-                        center[0] + radius * (c * u[0] + s * v[0]),
-                        center[1] + radius * (c * u[1] + s * v[1]),
-                        center[2] + radius * (c * u[2] + s * v[2]),
-                    ];
+                    let local = center + (u * c + v * s) * radius;
                     Sample {
                         local,
-                        dprim: [[local[0] / r, local[1] / r, local[2] / r], zero, zero],
+                        dprim: [local / r, zero, zero],
                     }
                 })
                 .collect()
@@ -227,15 +224,13 @@ pub fn ring_count(p: &PartGeom, frame: &Frame, r: f64) -> usize {
     if p.ring > 0 {
         return p.ring as usize;
     }
-    let stretch = (0..3)
-        .map(|j| norm([p.l[0][j], p.l[1][j], p.l[2][j]]))
-        .fold(0.0f64, f64::max);
+    let stretch = (0..3).map(|j| p.l.col(j).length()).fold(0.0f64, f64::max);
     let world_r = r * stretch;
     let px_per_unit = if frame.ortho {
         frame.focal
     } else {
         let z = frame.depth(p.center) - world_r;
-        if z <= 1e-9 {
+        if z <= NEAR_DEPTH {
             return 128;
         }
         frame.focal / z
@@ -302,7 +297,7 @@ fn convex_hull(pts: &mut [([f64; 2], u32)]) -> Vec<([f64; 2], u32)> {
         .iter()
         .fold(0.0f64, |m, p| m.max(p.0[0].abs()).max(p.0[1].abs()))
         .max(1.0);
-    let eps = 1e-12 * span * span;
+    let eps = RENDER_ROUNDOFF * span * span;
     let mut h: Vec<([f64; 2], u32)> = Vec::with_capacity(pts.len() + 1);
     for &p in pts.iter() {
         while h.len() >= 2 && turn(h[h.len() - 2].0, h[h.len() - 1].0, p.0) <= eps {
@@ -334,8 +329,8 @@ pub fn sample_jacobian(p: &PartGeom, s: &Sample, frame: &Frame) -> Option<[[f64;
             j[r][4 * i + 3] = row[i];
         }
         for q in 0..3 {
-            let dp = mat_vec(&p.l, s.dprim[q]);
-            j[r][12 + q] = dot(*row, dp);
+            let dp = p.l * s.dprim[q];
+            j[r][12 + q] = row.dot(dp);
         }
     }
     Some(j)

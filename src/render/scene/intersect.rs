@@ -3,11 +3,12 @@
 //! space, and a passage has `t0 <= t1` (ray parameters, the same in both frames).
 
 use super::{Hit, Kind, PartGeom};
-use crate::render::camera::{Vec3, dot};
+use crate::tolerance::{LENGTH_FLOOR, PARALLEL_SINE_SQUARED, RENDER_ROUNDOFF};
+use glam::DVec3;
 
 impl PartGeom {
     /// The ray's exact passage through the part (world ray; parameters are the ray's).
-    pub fn intersect(&self, origin: Vec3, dir: Vec3) -> Option<Hit> {
+    pub fn intersect(&self, origin: DVec3, dir: DVec3) -> Option<Hit> {
         if !self.valid {
             return None;
         }
@@ -28,13 +29,13 @@ impl PartGeom {
 
     /// For a ray that misses the part (or nearly does): the normal of the surface the ray
     /// passes closest to, continuing the visible face past the silhouette.
-    pub fn near_normal(&self, origin: Vec3, dir: Vec3) -> Vec3 {
+    pub fn near_normal(&self, origin: DVec3, dir: DVec3) -> DVec3 {
         let o = self.to_local(origin);
         let d = self.dir_to_local(dir);
         let n = match self.kind {
             Kind::Box => {
                 let mut best = f64::NEG_INFINITY;
-                let mut n = [0.0, 0.0, 1.0];
+                let mut n = DVec3::Z;
                 for a in 0..3 {
                     if d[a] == 0.0 {
                         continue;
@@ -44,7 +45,7 @@ impl PartGeom {
                     let (near, sign) = if ta < tb { (ta, -1.0) } else { (tb, 1.0) };
                     if near > best {
                         best = near;
-                        n = [0.0; 3];
+                        n = DVec3::ZERO;
                         n[a] = sign;
                     }
                 }
@@ -53,26 +54,26 @@ impl PartGeom {
             Kind::Frustum => {
                 let (z0, z1) = (self.lo[2], self.hi[2]);
                 let dd = d[0] * d[0] + d[1] * d[1];
-                if dd <= 1e-18 * dot(d, d) {
-                    [0.0, 0.0, if d[2] > 0.0 { -1.0 } else { 1.0 }]
+                if dd <= PARALLEL_SINE_SQUARED * d.dot(d) {
+                    DVec3::new(0.0, 0.0, if d[2] > 0.0 { -1.0 } else { 1.0 })
                 } else {
                     let ts = -(o[0] * d[0] + o[1] * d[1]) / dd;
-                    let p = [o[0] + ts * d[0], o[1] + ts * d[1], o[2] + ts * d[2]];
+                    let p = o + d * ts;
                     if p[2] < z0 && d[2] > 0.0 {
-                        [0.0, 0.0, -1.0]
+                        DVec3::NEG_Z
                     } else if p[2] > z1 && d[2] < 0.0 {
-                        [0.0, 0.0, 1.0]
+                        DVec3::Z
                     } else {
                         let k = (self.r2 - self.r1) / (z1 - z0);
-                        let r = (p[0] * p[0] + p[1] * p[1]).sqrt().max(1e-300);
-                        [p[0] / r, p[1] / r, -k]
+                        let r = (p[0] * p[0] + p[1] * p[1]).sqrt().max(LENGTH_FLOOR);
+                        DVec3::new(p[0] / r, p[1] / r, -k)
                     }
                 }
             }
             Kind::Sphere => {
-                let dd = dot(d, d).max(1e-300);
-                let ts = -dot(o, d) / dd;
-                [o[0] + ts * d[0], o[1] + ts * d[1], o[2] + ts * d[2]]
+                let dd = d.dot(d).max(LENGTH_FLOOR);
+                let ts = -o.dot(d) / dd;
+                o + d * ts
             }
         };
         self.normal_to_world(n)
@@ -83,15 +84,15 @@ impl PartGeom {
 struct LocalHit {
     t0: f64,
     t1: f64,
-    n0: Vec3,
-    n1: Vec3,
+    n0: DVec3,
+    n1: DVec3,
 }
 
-fn intersect_box(o: Vec3, d: Vec3, lo: Vec3, hi: Vec3) -> Option<LocalHit> {
+fn intersect_box(o: DVec3, d: DVec3, lo: DVec3, hi: DVec3) -> Option<LocalHit> {
     let mut t0 = f64::NEG_INFINITY;
     let mut t1 = f64::INFINITY;
-    let mut n0 = [0.0; 3];
-    let mut n1 = [0.0; 3];
+    let mut n0 = DVec3::ZERO;
+    let mut n1 = DVec3::ZERO;
     for a in 0..3 {
         if d[a] == 0.0 {
             if o[a] < lo[a] || o[a] > hi[a] {
@@ -108,22 +109,22 @@ fn intersect_box(o: Vec3, d: Vec3, lo: Vec3, hi: Vec3) -> Option<LocalHit> {
         };
         if near > t0 {
             t0 = near;
-            n0 = [0.0; 3];
+            n0 = DVec3::ZERO;
             n0[a] = sign;
         }
         if far < t1 {
             t1 = far;
-            n1 = [0.0; 3];
+            n1 = DVec3::ZERO;
             n1[a] = -sign;
         }
     }
     (t0 <= t1 && t0.is_finite() && t1.is_finite()).then_some(LocalHit { t0, t1, n0, n1 })
 }
 
-fn intersect_sphere(o: Vec3, d: Vec3, r: f64) -> Option<LocalHit> {
-    let a = dot(d, d);
-    let b = dot(o, d);
-    let c = dot(o, o) - r * r;
+fn intersect_sphere(o: DVec3, d: DVec3, r: f64) -> Option<LocalHit> {
+    let a = d.dot(d);
+    let b = o.dot(d);
+    let c = o.dot(o) - r * r;
     let disc = b * b - a * c;
     if disc < 0.0 || a <= 0.0 {
         return None;
@@ -131,8 +132,8 @@ fn intersect_sphere(o: Vec3, d: Vec3, r: f64) -> Option<LocalHit> {
     let q = disc.sqrt();
     let t0 = (-b - q) / a;
     let t1 = (-b + q) / a;
-    let p0 = [o[0] + t0 * d[0], o[1] + t0 * d[1], o[2] + t0 * d[2]];
-    let p1 = [o[0] + t1 * d[0], o[1] + t1 * d[1], o[2] + t1 * d[2]];
+    let p0 = o + d * t0;
+    let p1 = o + d * t1;
     Some(LocalHit {
         t0,
         t1,
@@ -142,7 +143,7 @@ fn intersect_sphere(o: Vec3, d: Vec3, r: f64) -> Option<LocalHit> {
 }
 
 /// A frustum along local z from `z0` to `z1` with radii `r1`, `r2` there.
-fn intersect_frustum(o: Vec3, d: Vec3, z0: f64, z1: f64, r1: f64, r2: f64) -> Option<LocalHit> {
+fn intersect_frustum(o: DVec3, d: DVec3, z0: f64, z1: f64, r1: f64, r2: f64) -> Option<LocalHit> {
     // The slab z0 ≤ z ≤ z1.
     let (mut s0, mut s1, sn0, sn1);
     if d[2] == 0.0 {
@@ -151,21 +152,21 @@ fn intersect_frustum(o: Vec3, d: Vec3, z0: f64, z1: f64, r1: f64, r2: f64) -> Op
         }
         s0 = f64::NEG_INFINITY;
         s1 = f64::INFINITY;
-        sn0 = [0.0; 3];
-        sn1 = [0.0; 3];
+        sn0 = DVec3::ZERO;
+        sn1 = DVec3::ZERO;
     } else {
         let ta = (z0 - o[2]) / d[2];
         let tb = (z1 - o[2]) / d[2];
         if ta < tb {
             s0 = ta;
             s1 = tb;
-            sn0 = [0.0, 0.0, -1.0];
-            sn1 = [0.0, 0.0, 1.0];
+            sn0 = DVec3::NEG_Z;
+            sn1 = DVec3::Z;
         } else {
             s0 = tb;
             s1 = ta;
-            sn0 = [0.0, 0.0, 1.0];
-            sn1 = [0.0, 0.0, -1.0];
+            sn0 = DVec3::Z;
+            sn1 = DVec3::NEG_Z;
         }
     }
     // The cone x² + y² ≤ ρ(z)², ρ(z) = c0 + k·z.
@@ -176,10 +177,45 @@ fn intersect_frustum(o: Vec3, d: Vec3, z0: f64, z1: f64, r1: f64, r2: f64) -> Op
     let b = 2.0 * (o[0] * d[0] + o[1] * d[1] - rho_o * k * d[2]);
     let c = o[0] * o[0] + o[1] * o[1] - rho_o * rho_o;
     let scale_a = d[0] * d[0] + d[1] * d[1] + k * k * d[2] * d[2];
-    // Pieces of the line where the quadratic is ≤ 0.
+    let pieces = cone_pieces(a, b, c, scale_a)?;
+    // Keep the piece that overlaps the slab (the frustum is convex: at most one does).
+    let mut best: Option<(f64, f64)> = None;
+    for &(p0, p1) in &pieces {
+        if p0.is_nan() {
+            continue;
+        }
+        let lo = p0.max(s0);
+        let hi = p1.min(s1);
+        if lo <= hi && best.is_none_or(|(b0, b1)| hi - lo > b1 - b0) {
+            best = Some((lo, hi));
+        }
+    }
+    let (t0, t1) = best?;
+    if !t0.is_finite() || !t1.is_finite() {
+        return None;
+    }
+    let side_normal = |t: f64| -> DVec3 {
+        let p = o + d * t;
+        DVec3::new(p[0], p[1], -k * (c0 + k * p[2]))
+    };
+    let n0 = if t0 == s0 { sn0 } else { side_normal(t0) };
+    let n1 = if t1 == s1 { sn1 } else { side_normal(t1) };
+    s0 = t0;
+    s1 = t1;
+    Some(LocalHit {
+        t0: s0,
+        t1: s1,
+        n0,
+        n1,
+    })
+}
+
+/// The pieces of the line where `a·t² + b·t + c ≤ 0` (unused ones NaN; `None`: nowhere);
+/// `scale_a` is the size `a` is compared with to call it zero.
+fn cone_pieces(a: f64, b: f64, c: f64, scale_a: f64) -> Option<[(f64, f64); 2]> {
     let mut pieces: [(f64, f64); 2] = [(f64::NAN, f64::NAN); 2];
-    if a.abs() <= 1e-12 * scale_a {
-        if b.abs() <= 1e-300 {
+    if a.abs() <= RENDER_ROUNDOFF * scale_a {
+        if b.abs() <= LENGTH_FLOOR {
             if c > 0.0 {
                 return None;
             }
@@ -216,36 +252,7 @@ fn intersect_frustum(o: Vec3, d: Vec3, z0: f64, z1: f64, r1: f64, r2: f64) -> Op
             }
         }
     }
-    // Keep the piece that overlaps the slab (the frustum is convex: at most one does).
-    let mut best: Option<(f64, f64)> = None;
-    for &(p0, p1) in &pieces {
-        if p0.is_nan() {
-            continue;
-        }
-        let lo = p0.max(s0);
-        let hi = p1.min(s1);
-        if lo <= hi && best.is_none_or(|(b0, b1)| hi - lo > b1 - b0) {
-            best = Some((lo, hi));
-        }
-    }
-    let (t0, t1) = best?;
-    if !t0.is_finite() || !t1.is_finite() {
-        return None;
-    }
-    let side_normal = |t: f64| -> Vec3 {
-        let p = [o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2]];
-        [p[0], p[1], -k * (c0 + k * p[2])]
-    };
-    let n0 = if t0 == s0 { sn0 } else { side_normal(t0) };
-    let n1 = if t1 == s1 { sn1 } else { side_normal(t1) };
-    s0 = t0;
-    s1 = t1;
-    Some(LocalHit {
-        t0: s0,
-        t1: s1,
-        n0,
-        n1,
-    })
+    Some(pieces)
 }
 
 #[cfg(test)]
@@ -266,11 +273,16 @@ mod tests {
         let mut th = unit();
         th[12..15].copy_from_slice(&[2.0, 2.0, 2.0]);
         let p = PartGeom::from_theta(Kind::Box, true, th);
-        let h = p.intersect([0.0, -10.0, 0.5], [0.0, 1.0, 0.0]).unwrap();
+        let h = p
+            .intersect(DVec3::new(0.0, -10.0, 0.5), DVec3::new(0.0, 1.0, 0.0))
+            .unwrap();
         assert!((h.t0 - 9.0).abs() < 1e-12 && (h.t1 - 11.0).abs() < 1e-12);
-        assert_eq!(h.n0, [0.0, -1.0, 0.0]);
-        assert_eq!(h.n1, [0.0, 1.0, 0.0]);
-        assert!(p.intersect([0.0, -10.0, 1.5], [0.0, 1.0, 0.0]).is_none());
+        assert_eq!(h.n0, DVec3::new(0.0, -1.0, 0.0));
+        assert_eq!(h.n1, DVec3::new(0.0, 1.0, 0.0));
+        assert!(
+            p.intersect(DVec3::new(0.0, -10.0, 1.5), DVec3::new(0.0, 1.0, 0.0))
+                .is_none()
+        );
     }
 
     #[test]
@@ -279,19 +291,31 @@ mod tests {
         th[12..15].copy_from_slice(&[10.0, 4.0, 2.0]);
         let p = PartGeom::from_theta(Kind::Frustum, false, th);
         // Along x at z = 5: radius 3.
-        let h = p.intersect([-10.0, 0.0, 5.0], [1.0, 0.0, 0.0]).unwrap();
+        let h = p
+            .intersect(DVec3::new(-10.0, 0.0, 5.0), DVec3::new(1.0, 0.0, 0.0))
+            .unwrap();
         assert!((h.t0 - 7.0).abs() < 1e-9 && (h.t1 - 13.0).abs() < 1e-9);
         assert!(h.n0[0] < 0.0 && h.n0[2] > 0.0);
         // Down the axis: top cap then bottom cap.
-        let h = p.intersect([0.0, 0.0, 20.0], [0.0, 0.0, -1.0]).unwrap();
+        let h = p
+            .intersect(DVec3::new(0.0, 0.0, 20.0), DVec3::new(0.0, 0.0, -1.0))
+            .unwrap();
         assert!((h.t0 - 10.0).abs() < 1e-9 && (h.t1 - 20.0).abs() < 1e-9);
-        assert_eq!(h.n0, [0.0, 0.0, 1.0]);
-        assert!(p.intersect([3.5, 0.0, 20.0], [0.0, 0.0, -1.0]).is_some());
-        assert!(p.intersect([4.5, 0.0, 20.0], [0.0, 0.0, -1.0]).is_none());
+        assert_eq!(h.n0, DVec3::new(0.0, 0.0, 1.0));
+        assert!(
+            p.intersect(DVec3::new(3.5, 0.0, 20.0), DVec3::new(0.0, 0.0, -1.0))
+                .is_some()
+        );
+        assert!(
+            p.intersect(DVec3::new(4.5, 0.0, 20.0), DVec3::new(0.0, 0.0, -1.0))
+                .is_none()
+        );
         // A cone to a point.
         th[14] = 0.0;
         let c = PartGeom::from_theta(Kind::Frustum, false, th);
-        let h = c.intersect([-10.0, 0.0, 5.0], [1.0, 0.0, 0.0]).unwrap();
+        let h = c
+            .intersect(DVec3::new(-10.0, 0.0, 5.0), DVec3::new(1.0, 0.0, 0.0))
+            .unwrap();
         assert!((h.t1 - h.t0 - 4.0).abs() < 1e-9);
     }
 
@@ -301,7 +325,9 @@ mod tests {
         th[0] = 2.0;
         th[12] = 1.0;
         let p = PartGeom::from_theta(Kind::Sphere, true, th);
-        let h = p.intersect([-10.0, 0.0, 0.0], [1.0, 0.0, 0.0]).unwrap();
+        let h = p
+            .intersect(DVec3::new(-10.0, 0.0, 0.0), DVec3::new(1.0, 0.0, 0.0))
+            .unwrap();
         assert!((h.t0 - 8.0).abs() < 1e-9 && (h.t1 - 12.0).abs() < 1e-9);
         assert!((h.n0[0] + 1.0).abs() < 1e-9);
     }

@@ -33,8 +33,10 @@ mod items;
 pub use hull::{Coverage, Hull, Sample, hull, logistic, ring_count, sample_jacobian, samples};
 pub use items::{Item, Op, eval_inside, eval_soft, items_of};
 
-use super::camera::{Vec3, cross, dot, norm, normalize};
+use super::camera::unit;
 use crate::ir::{Affine, CsgNode, Part, Primitive};
+use crate::tolerance::{LENGTH_FLOOR, RENDER_ROUNDOFF};
+use glam::{DMat3, DVec3};
 
 /// Number of parameters of a part.
 pub const NTHETA: usize = 15;
@@ -57,19 +59,19 @@ pub struct PartGeom {
     pub centered: bool,
     pub theta: [f64; NTHETA],
     /// World map `P = L·p + t`.
-    pub l: [[f64; 3]; 3],
-    pub t: Vec3,
+    pub l: DMat3,
+    pub t: DVec3,
     /// `L⁻¹` and `−L⁻¹·t`.
-    pub inv: [[f64; 3]; 3],
-    pub inv_t: Vec3,
+    pub inv: DMat3,
+    pub inv_t: DVec3,
     /// Local box (for a frustum: `lo.z = z0`, `hi.z = z1`).
-    pub lo: Vec3,
-    pub hi: Vec3,
+    pub lo: DVec3,
+    pub hi: DVec3,
     /// Frustum radii at `z0` and `z1`; a sphere's radius is `r1`.
     pub r1: f64,
     pub r2: f64,
     /// World position of the local box's center.
-    pub center: Vec3,
+    pub center: DVec3,
     /// False for a degenerate part (singular map, negative size): it is never drawn.
     pub valid: bool,
     /// Points per circle of a curved part's silhouette; 0 chooses from the view. A fit
@@ -82,33 +84,25 @@ pub struct PartGeom {
 pub struct Hit {
     pub t0: f64,
     pub t1: f64,
-    pub n0: Vec3,
-    pub n1: Vec3,
+    pub n0: DVec3,
+    pub n1: DVec3,
 }
 
-pub(super) fn mat_vec(m: &[[f64; 3]; 3], v: Vec3) -> Vec3 {
-    [dot(m[0], v), dot(m[1], v), dot(m[2], v)]
-}
-
-fn det3(m: &[[f64; 3]; 3]) -> f64 {
-    dot(m[0], cross(m[1], m[2]))
-}
-
-fn inverse3(m: &[[f64; 3]; 3]) -> Option<[[f64; 3]; 3]> {
-    let d = det3(m);
-    let scale = m.iter().flatten().fold(0.0f64, |a, v| a.max(v.abs()));
-    if d.abs() <= 1e-12 * scale.powi(3) || !d.is_finite() {
+/// `m⁻¹` as the adjugate (columns: cross products of rows) over the determinant, or
+/// `None` for a singular map. Written out rather than `DMat3::inverse` so the numbers stay
+/// the ones the renderer has always computed (a division by the determinant, not a
+/// multiplication by its reciprocal).
+fn inverse3(m: &DMat3) -> Option<DMat3> {
+    let (r0, r1, r2) = (m.row(0), m.row(1), m.row(2));
+    let d = r0.dot(r1.cross(r2));
+    let scale = m.to_cols_array().iter().fold(0.0f64, |a, v| a.max(v.abs()));
+    if d.abs() <= RENDER_ROUNDOFF * scale.powi(3) || !d.is_finite() {
         return None;
     }
-    let c0 = cross(m[1], m[2]);
-    let c1 = cross(m[2], m[0]);
-    let c2 = cross(m[0], m[1]);
-    // inverse = adjugate / det; adjugate columns are the cross products.
-    Some([
-        [c0[0] / d, c1[0] / d, c2[0] / d],
-        [c0[1] / d, c1[1] / d, c2[1] / d],
-        [c0[2] / d, c1[2] / d, c2[2] / d],
-    ])
+    let c0 = r1.cross(r2);
+    let c1 = r2.cross(r0);
+    let c2 = r0.cross(r1);
+    Some(DMat3::from_cols(c0 / d, c1 / d, c2 / d))
 }
 
 impl PartGeom {
@@ -143,20 +137,21 @@ impl PartGeom {
 
     /// Geometry from parameters.
     pub fn from_theta(kind: Kind, centered: bool, theta: [f64; NTHETA]) -> PartGeom {
-        let l = [
-            [theta[0], theta[1], theta[2]],
-            [theta[4], theta[5], theta[6]],
-            [theta[8], theta[9], theta[10]],
-        ];
-        let t = [theta[3], theta[7], theta[11]];
+        let l = DMat3::from_rows(
+            DVec3::new(theta[0], theta[1], theta[2]),
+            DVec3::new(theta[4], theta[5], theta[6]),
+            DVec3::new(theta[8], theta[9], theta[10]),
+        );
+        let t = DVec3::new(theta[3], theta[7], theta[11]);
         let (lo, hi, r1, r2, sizes_ok) = match kind {
             Kind::Box => {
                 let s = [theta[12], theta[13], theta[14]];
                 let ok = s.iter().all(|&v| v > 0.0);
                 if centered {
-                    (s.map(|v| -v / 2.0), s.map(|v| v / 2.0), 0.0, 0.0, ok)
+                    let lo = DVec3::from(s.map(|v| -v / 2.0));
+                    (lo, DVec3::from(s.map(|v| v / 2.0)), 0.0, 0.0, ok)
                 } else {
-                    ([0.0; 3], s, 0.0, 0.0, ok)
+                    (DVec3::ZERO, DVec3::from(s), 0.0, 0.0, ok)
                 }
             }
             Kind::Frustum => {
@@ -168,23 +163,19 @@ impl PartGeom {
                 };
                 let r = r1.max(r2);
                 let ok = h > 0.0 && r1 >= 0.0 && r2 >= 0.0 && r > 0.0;
-                ([-r, -r, z0], [r, r, z1], r1, r2, ok)
+                (DVec3::new(-r, -r, z0), DVec3::new(r, r, z1), r1, r2, ok)
             }
             Kind::Sphere => {
                 let r = theta[12];
-                ([-r; 3], [r; 3], r, r, r > 0.0)
+                (DVec3::splat(-r), DVec3::splat(r), r, r, r > 0.0)
             }
         };
         let inv = inverse3(&l);
         let valid = sizes_ok && inv.is_some() && theta.iter().all(|v| v.is_finite());
-        let inv = inv.unwrap_or([[0.0; 3]; 3]);
-        let it = mat_vec(&inv, t);
-        let mid = [
-            (lo[0] + hi[0]) / 2.0,
-            (lo[1] + hi[1]) / 2.0,
-            (lo[2] + hi[2]) / 2.0,
-        ];
-        let center = super::camera::add(mat_vec(&l, mid), t);
+        let inv = inv.unwrap_or(DMat3::ZERO);
+        let it = inv * t;
+        let mid = (lo + hi) / 2.0;
+        let center = l * mid + t;
         PartGeom {
             kind,
             centered,
@@ -192,7 +183,7 @@ impl PartGeom {
             l,
             t,
             inv,
-            inv_t: [-it[0], -it[1], -it[2]],
+            inv_t: -it,
             lo,
             hi,
             r1,
@@ -204,28 +195,23 @@ impl PartGeom {
     }
 
     /// Local coordinates of a world point.
-    pub fn to_local(&self, p: Vec3) -> Vec3 {
-        super::camera::add(mat_vec(&self.inv, p), self.inv_t)
+    pub fn to_local(&self, p: DVec3) -> DVec3 {
+        self.inv * p + self.inv_t
     }
 
     /// Local direction of a world direction (same ray parameter in both frames).
-    pub fn dir_to_local(&self, d: Vec3) -> Vec3 {
-        mat_vec(&self.inv, d)
+    pub fn dir_to_local(&self, d: DVec3) -> DVec3 {
+        self.inv * d
     }
 
     /// World unit normal of a local normal (`L⁻ᵀ·n`).
-    pub fn normal_to_world(&self, n: Vec3) -> Vec3 {
-        let m = &self.inv;
-        normalize([
-            m[0][0] * n[0] + m[1][0] * n[1] + m[2][0] * n[2],
-            m[0][1] * n[0] + m[1][1] * n[1] + m[2][1] * n[2],
-            m[0][2] * n[0] + m[1][2] * n[1] + m[2][2] * n[2],
-        ])
+    pub fn normal_to_world(&self, n: DVec3) -> DVec3 {
+        unit(self.inv.mul_transpose_vec3(n))
     }
 
     /// World point of a local point.
-    pub fn to_world(&self, p: Vec3) -> Vec3 {
-        super::camera::add(mat_vec(&self.l, p), self.t)
+    pub fn to_world(&self, p: DVec3) -> DVec3 {
+        self.l * p + self.t
     }
 }
 
@@ -235,41 +221,25 @@ impl PartGeom {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SurfacePoint {
     pub sd: f64,
-    pub q: Vec3,
-    pub n: Vec3,
+    pub q: DVec3,
+    pub n: DVec3,
     pub ldq: [f64; 3],
 }
 
 impl PartGeom {
     /// Signed distance from a world point to the part's nearest face plane (the largest of
     /// the face distances, so exact near faces), with that face's material point.
-    pub fn surface_distance(&self, p: Vec3) -> Option<SurfacePoint> {
+    pub fn surface_distance(&self, p: DVec3) -> Option<SurfacePoint> {
         if !self.valid {
             return None;
         }
         let q = self.to_local(p);
-        let inv = &self.inv;
-        let rowlen = |a: usize| norm(inv[a]).max(1e-300);
-        // World normal of a local normal and the factor from local to world distance.
-        let world = |nl: Vec3| -> (Vec3, f64) {
-            let w = [
-                inv[0][0] * nl[0] + inv[1][0] * nl[1] + inv[2][0] * nl[2],
-                inv[0][1] * nl[0] + inv[1][1] * nl[1] + inv[2][1] * nl[2],
-                inv[0][2] * nl[0] + inv[1][2] * nl[1] + inv[2][2] * nl[2],
-            ];
-            let l = norm(w).max(1e-300);
-            ([w[0] / l, w[1] / l, w[2] / l], l)
-        };
-        let finish = |sd: f64, qs: Vec3, n: Vec3, dq: [Vec3; 3]| -> SurfacePoint {
-            let ldq = std::array::from_fn(|k| dot(n, mat_vec(&self.l, dq[k])));
-            SurfacePoint { sd, q: qs, n, ldq }
-        };
-        let zero = [0.0; 3];
+        let zero = DVec3::ZERO;
         match self.kind {
             Kind::Box => {
                 let mut best = (f64::NEG_INFINITY, 0usize, false);
                 for a in 0..3 {
-                    let l = rowlen(a);
+                    let l = self.row_length(a);
                     let dlo = (self.lo[a] - q[a]) / l;
                     let dhi = (q[a] - self.hi[a]) / l;
                     if dlo > best.0 {
@@ -282,9 +252,9 @@ impl PartGeom {
                 let (sd, a, high) = best;
                 let mut qs = q;
                 qs[a] = if high { self.hi[a] } else { self.lo[a] };
-                let mut nl = [0.0; 3];
+                let mut nl = DVec3::ZERO;
                 nl[a] = if high { 1.0 } else { -1.0 };
-                let (n, _) = world(nl);
+                let (n, _) = self.world_normal(nl);
                 let mut dq = [zero; 3];
                 dq[a][a] = match (self.centered, high) {
                     (true, true) => 0.5,
@@ -292,76 +262,85 @@ impl PartGeom {
                     (false, true) => 1.0,
                     (false, false) => 0.0,
                 };
-                Some(finish(sd, qs, n, dq))
+                Some(self.surface_point(sd, qs, n, dq))
             }
-            Kind::Frustum => {
-                let (z0, z1) = (self.lo[2], self.hi[2]);
-                let (dz0, dz1) = if self.centered {
-                    (-0.5, 0.5)
-                } else {
-                    (0.0, 1.0)
-                };
-                let h = z1 - z0;
-                let k = (self.r2 - self.r1) / h;
-                let rho = (q[0] * q[0] + q[1] * q[1]).sqrt();
-                let (c, s) = if rho > 1e-300 {
-                    (q[0] / rho, q[1] / rho)
-                } else {
-                    (1.0, 0.0)
-                };
-                let rs = self.r1 + k * (q[2] - z0);
-                let kk = (1.0 + k * k).sqrt();
-                let (ns, ws) = world([c / kk, s / kk, -k / kk]);
-                let side = (rho - rs) / kk / ws;
-                let l2 = rowlen(2);
-                let bottom = (z0 - q[2]) / l2;
-                let top = (q[2] - z1) / l2;
-                if side >= bottom && side >= top {
-                    let v = (q[2] - z0) / h;
-                    let qs = [rs * c, rs * s, q[2]];
-                    let dq = [
-                        [0.0, 0.0, dz0 + v * (dz1 - dz0)],
-                        [(1.0 - v) * c, (1.0 - v) * s, 0.0],
-                        [v * c, v * s, 0.0],
-                    ];
-                    Some(finish(side, qs, ns, dq))
-                } else if bottom >= top {
-                    let (n, _) = world([0.0, 0.0, -1.0]);
-                    Some(finish(
-                        bottom,
-                        [q[0], q[1], z0],
-                        n,
-                        [[0.0, 0.0, dz0], zero, zero],
-                    ))
-                } else {
-                    let (n, _) = world([0.0, 0.0, 1.0]);
-                    Some(finish(
-                        top,
-                        [q[0], q[1], z1],
-                        n,
-                        [[0.0, 0.0, dz1], zero, zero],
-                    ))
-                }
-            }
+            Kind::Frustum => Some(self.frustum_surface(q)),
             Kind::Sphere => {
                 let r = self.r1;
-                let rho = norm(q).max(1e-300);
-                let nl = [q[0] / rho, q[1] / rho, q[2] / rho];
-                let (n, w) = world(nl);
+                let rho = q.length().max(LENGTH_FLOOR);
+                let nl = q / rho;
+                let (n, w) = self.world_normal(nl);
                 let sd = (rho - r) / w;
-                Some(finish(
-                    sd,
-                    [nl[0] * r, nl[1] * r, nl[2] * r],
-                    n,
-                    [nl, zero, zero],
-                ))
+                Some(self.surface_point(sd, nl * r, n, [nl, zero, zero]))
             }
         }
+    }
+
+    /// [`PartGeom::surface_distance`] of a frustum, at local point `q`: its side or a cap.
+    fn frustum_surface(&self, q: DVec3) -> SurfacePoint {
+        let zero = DVec3::ZERO;
+        let (z0, z1) = (self.lo[2], self.hi[2]);
+        let (dz0, dz1) = if self.centered {
+            (-0.5, 0.5)
+        } else {
+            (0.0, 1.0)
+        };
+        let h = z1 - z0;
+        let k = (self.r2 - self.r1) / h;
+        let rho = (q[0] * q[0] + q[1] * q[1]).sqrt();
+        let (c, s) = if rho > LENGTH_FLOOR {
+            (q[0] / rho, q[1] / rho)
+        } else {
+            (1.0, 0.0)
+        };
+        let rs = self.r1 + k * (q[2] - z0);
+        let kk = (1.0 + k * k).sqrt();
+        let (ns, ws) = self.world_normal(DVec3::new(c / kk, s / kk, -k / kk));
+        let side = (rho - rs) / kk / ws;
+        let l2 = self.row_length(2);
+        let bottom = (z0 - q[2]) / l2;
+        let top = (q[2] - z1) / l2;
+        if side >= bottom && side >= top {
+            let v = (q[2] - z0) / h;
+            let qs = DVec3::new(rs * c, rs * s, q[2]);
+            let dq = [
+                DVec3::new(0.0, 0.0, dz0 + v * (dz1 - dz0)),
+                DVec3::new((1.0 - v) * c, (1.0 - v) * s, 0.0),
+                DVec3::new(v * c, v * s, 0.0),
+            ];
+            self.surface_point(side, qs, ns, dq)
+        } else if bottom >= top {
+            let (n, _) = self.world_normal(DVec3::NEG_Z);
+            let dq = [DVec3::new(0.0, 0.0, dz0), zero, zero];
+            self.surface_point(bottom, DVec3::new(q[0], q[1], z0), n, dq)
+        } else {
+            let (n, _) = self.world_normal(DVec3::Z);
+            let dq = [DVec3::new(0.0, 0.0, dz1), zero, zero];
+            self.surface_point(top, DVec3::new(q[0], q[1], z1), n, dq)
+        }
+    }
+
+    /// Length of row `a` of `L⁻¹`: local distance along axis `a` per world distance.
+    fn row_length(&self, a: usize) -> f64 {
+        self.inv.row(a).length().max(LENGTH_FLOOR)
+    }
+
+    /// World unit normal of a local normal and the factor from local to world distance.
+    fn world_normal(&self, nl: DVec3) -> (DVec3, f64) {
+        let w = self.inv.mul_transpose_vec3(nl);
+        let l = w.length().max(LENGTH_FLOOR);
+        (w / l, l)
+    }
+
+    /// A surface point with `N·(L·∂q/∂prim)` from the material point's derivatives `dq`.
+    fn surface_point(&self, sd: f64, qs: DVec3, n: DVec3, dq: [DVec3; 3]) -> SurfacePoint {
+        let ldq = std::array::from_fn(|k| n.dot(self.l * dq[k]));
+        SurfacePoint { sd, q: qs, n, ldq }
     }
 }
 
 /// `∂sd/∂θ` of a surface point: minus the normal motion of its material point.
-pub fn surface_jacobian(sp_n: Vec3, q: Vec3, ldq: [f64; 3]) -> [f64; NTHETA] {
+pub fn surface_jacobian(sp_n: DVec3, q: DVec3, ldq: [f64; 3]) -> [f64; NTHETA] {
     let mut j = [0.0; NTHETA];
     for i in 0..3 {
         for k in 0..3 {
@@ -378,7 +357,7 @@ pub fn surface_jacobian(sp_n: Vec3, q: Vec3, ldq: [f64; 3]) -> [f64; NTHETA] {
 /// The shading features of an eye-space normal: `1, n_x, n_y, n_z, |n·l|` with OpenSCAD's
 /// light direction `l = (−1, −1, 1)/√3`.
 #[inline]
-pub fn shade_features(n: Vec3) -> [f64; NSHADE] {
+pub fn shade_features(n: [f64; 3]) -> [f64; NSHADE] {
     let k = 1.0 / 3f64.sqrt();
     [1.0, n[0], n[1], n[2], (k * (-n[0] - n[1] + n[2])).abs()]
 }
@@ -464,7 +443,7 @@ impl Scene {
     }
 
     /// World bounding box of the drawn parts (`None` if nothing is drawn).
-    pub fn bounds(&self) -> Option<(Vec3, Vec3)> {
+    pub fn bounds(&self) -> Option<([f64; 3], [f64; 3])> {
         let mut lo = [f64::INFINITY; 3];
         let mut hi = [f64::NEG_INFINITY; 3];
         let mut any = false;
@@ -476,9 +455,9 @@ impl Scene {
                 }
                 any = true;
                 for c in 0..8 {
-                    let q =
+                    let q: [f64; 3] =
                         std::array::from_fn(|a| if c >> a & 1 == 0 { p.lo[a] } else { p.hi[a] });
-                    let w = p.to_world(q);
+                    let w = p.to_world(DVec3::from(q));
                     for a in 0..3 {
                         lo[a] = lo[a].min(w[a]);
                         hi[a] = hi[a].max(w[a]);

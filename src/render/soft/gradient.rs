@@ -4,6 +4,7 @@
 
 use super::ViewPrep;
 use crate::render::scene::{NTHETA, Scene, sample_jacobian, surface_jacobian};
+use glam::DVec3;
 
 /// A pixel's sensitivity to one part's signed distance to its silhouette.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -29,8 +30,8 @@ pub struct SurfaceEntry {
     pub part: u32,
     pub dm: f64,
     pub ds: f64,
-    pub n: [f64; 3],
-    pub q: [f64; 3],
+    pub n: DVec3,
+    pub q: DVec3,
     pub ldq: [f64; 3],
 }
 

@@ -1,5 +1,5 @@
-//! Soft silhouettes on the CPU: the per-pixel kernel, compositing, and the gradient of an
-//! image loss with respect to every part parameter.
+//! Soft silhouettes on the CPU: the per-pixel kernel, compositing, and the gradient of a
+//! function of the image with respect to every part parameter.
 //!
 //! For each view a [`ViewPrep`] holds the camera frame and each part's silhouette hull.
 //! [`render_view`] evaluates every pixel: each item's coverage (a sigmoid of the signed
@@ -8,7 +8,7 @@
 //! coverage `M` and premultiplied shade `S`. Pixels near a silhouette also record an
 //! [`Entry`]: how `M` and `S` change with that part's signed distance and how the distance
 //! changes with the two hull vertices of the deciding edge. [`theta_gradient`] turns
-//! per-pixel loss derivatives and those entries into `∂loss/∂θ` for every part.
+//! per-pixel derivatives (of a loss, say) and those entries into `∂/∂θ` for every part.
 //!
 //! This module owns the prepared view, the rendered images and the per-view driver;
 //! `pixel` holds the per-pixel kernel, `visible` the exact boolean visible surface along a
@@ -170,7 +170,7 @@ pub fn render_view(
                     m[i] = out.m as f32;
                     s[i] = out.s as f32;
                     item[i] = out.item;
-                    normal[i] = out.normal.map(|v| v as f32);
+                    normal[i] = out.normal.as_vec3().to_array();
                     depth[i] = out.depth as f32;
                 }
             }

@@ -1,15 +1,22 @@
 //! The per-pixel kernel: each item's coverage and visible surface at one pixel,
 //! front-to-back compositing into `M` and `S`, and (with soft edges) the gradient entries
 //! of that pixel. Per-thread scratch buffers are cleared at the start of every pixel.
+//!
+//! [`PixelCtx::pixel`] drives one pixel: each item's layer (`item_layer`: a plain item, or a
+//! split difference with its soft cut edges), front-to-back compositing, then the gradient
+//! entries (`record_entries`). An item's part states stay in the scratch exactly while the
+//! item has a layer.
 
 use super::gradient::{Entries, Entry, SurfaceEntry};
 use super::visible::{first_solid_from, visible_surface, visible_surface_at};
 use super::{HULL_MARGIN, ViewPrep};
-use crate::render::camera::{Frame, Vec3, dot, scale};
+use crate::render::camera::Frame;
 use crate::render::scene::{
-    CUTOFF, Coverage, Hit, NSHADE, PartGeom, Scene, SurfacePoint, eval_inside, eval_soft, logistic,
-    shade_features,
+    CUTOFF, Coverage, Hit, Item, NSHADE, PartGeom, Scene, SurfacePoint, eval_inside, eval_soft,
+    logistic, shade_features,
 };
+use crate::tolerance::{PIXEL_SCALE_FLOOR, RENDER_ROUNDOFF};
+use glam::DVec3;
 
 /// What one layer (an item at a pixel) contributes: coverage `α` and premultiplied shade
 /// `P` (`α·shade` for a plain surface).
@@ -83,12 +90,12 @@ pub(super) struct PixelOut {
     pub(super) m: f64,
     pub(super) s: f64,
     pub(super) item: i32,
-    pub(super) normal: Vec3,
+    pub(super) normal: DVec3,
     pub(super) depth: f64,
 }
 
 impl PixelCtx<'_> {
-    fn part_at(&self, p: usize, u: [f64; 2], o: Vec3, d: Vec3) -> PartAt {
+    fn part_at(&self, p: usize, u: [f64; 2], o: DVec3, d: DVec3) -> PartAt {
         let g: &PartGeom = &self.scene.parts[p];
         let mut st = PartAt {
             alpha: 0.0,
@@ -139,9 +146,9 @@ impl PixelCtx<'_> {
 
     /// Shade of item `item`'s surface with world normal `n_world`: the view's shading
     /// times the item's albedo.
-    fn shade_of(&self, item: usize, n_world: Vec3) -> f64 {
+    fn shade_of(&self, item: usize, n_world: DVec3) -> f64 {
         let n = self.prep.frame.to_eye(n_world);
-        let f = shade_features(n);
+        let f = shade_features(n.to_array());
         let mut v = 0.0;
         for k in 0..NSHADE {
             v += self.shade[k] * f[k];
@@ -160,17 +167,10 @@ impl PixelCtx<'_> {
         let u = [px as f64 + 0.5, py as f64 + 0.5];
         let ray = frame.ray(u[0], u[1]);
         let (o, d) = (ray.origin, ray.dir);
-        let Scratch {
-            layers,
-            states,
-            negs,
-            mb,
-            sb,
-        } = scratch;
-        layers.clear();
-        states.clear();
-        negs.clear();
-        let mut best_hard: Option<(f64, i32, Vec3)> = None;
+        scratch.layers.clear();
+        scratch.states.clear();
+        scratch.negs.clear();
+        let mut best_hard: Option<(f64, i32, DVec3)> = None;
         for (idx, item) in self.scene.items.iter().enumerate() {
             let Some(r) = self.prep.rects[idx] else {
                 continue;
@@ -178,340 +178,15 @@ impl PixelCtx<'_> {
             if px < r[0] || px >= r[2] || py < r[1] || py >= r[3] {
                 continue;
             }
-            let first_state = states.len();
-            for &p in &item.parts {
-                let st = self.part_at(p, u, o, d);
-                states.push((p as u32, st));
-            }
-            let st = &states[first_state..];
-            let get = |p: usize| st.iter().find(|(q, _)| *q as usize == p).map(|x| x.1);
-            let range = (first_state as u32, states.len() as u32);
-            // The exact visible surface of the item.
-            let visible: Option<(f64, Vec3)> = if item.is_single() {
-                st[0].1.hit.filter(|h| h.t0 > 0.0).map(|h| (h.t0, h.n0))
-            } else {
-                visible_surface(&item.program, st)
-            };
-            if let Some((t, n)) = visible
-                && best_hard.is_none_or(|b| t < b.0)
-            {
-                best_hard = Some((t, idx as i32, n));
-            }
-            let plain = Layer {
-                depth: 0.0,
-                alpha: 0.0,
-                premult: 0.0,
-                item: idx as u32,
-                keep: 1.0,
-                states: range,
-                split: false,
-                alpha_a: 1.0,
-                kappa: 1.0,
-                cavity: 0.0,
-                sh_front: 0.0,
-                sh_cavity: 0.0,
-                negs: (0, 0),
-            };
-            // The continuation of the first part's face past the silhouette.
-            let fallback = || {
-                let first = item.parts[0];
-                let g = &self.scene.parts[first];
-                let n = match get(first).and_then(|s| s.hit) {
-                    Some(h) => h.n0,
-                    None => g.near_normal(o, d),
-                };
-                (frame.depth(g.center), n)
-            };
-            if let Some((_, negatives)) = &item.split {
-                // A difference with soft cut edges: the first operand's front surface, kept
-                // where it is outside every subtracted part, and the cavity behind.
-                let pos = item.positive();
-                let front: Option<(f64, Vec3, usize)> = if pos.len() == 1 {
-                    st[0].1.hit.filter(|h| h.t0 > 0.0).map(|h| (h.t0, h.n0, 0))
-                } else {
-                    visible_surface_at(pos, st)
-                };
-                let alpha_a = match self.sigma {
-                    None => {
-                        if front.is_some() {
-                            1.0
-                        } else {
-                            0.0
-                        }
-                    }
-                    Some(_) => eval_soft(pos, &|p| get(p).map_or(0.0, |s| s.alpha), None).0,
-                };
-                if alpha_a <= 0.0 {
-                    states.truncate(first_state);
-                    continue;
-                }
-                let Some((ta, na, ka)) = front else {
-                    let (depth, n) = fallback();
-                    let sh = self.shade_of(idx, n);
-                    layers.push(Layer {
-                        depth,
-                        alpha: alpha_a,
-                        premult: alpha_a * sh,
-                        ..plain
-                    });
-                    continue;
-                };
-                let pa = [o[0] + ta * d[0], o[1] + ta * d[1], o[2] + ta * d[2]];
-                // The front point as a material point of its part: the front moves with it.
-                let part_a = st[ka].0;
-                let sp_a = self.scene.parts[part_a as usize].surface_distance(pa);
-                let na_d = dot(na, d);
-                let first_neg = negs.len();
-                let mut kappa = 1.0;
-                let mut deepest: Option<(f64, usize)> = None;
-                for &b in negatives {
-                    let Some(sb_) = get(b) else { continue };
-                    let gb = &self.scene.parts[b];
-                    let kb = match self.sigma {
-                        None => {
-                            let inside = sb_.hit.is_some_and(|h| h.t0 <= ta && ta <= h.t1);
-                            if inside { 0.0 } else { 1.0 }
-                        }
-                        Some(sigma) => {
-                            let Some(sp) = gb.surface_distance(pa) else {
-                                continue;
-                            };
-                            let g = pixel_scale(frame, d, ta, na, sp.n);
-                            let s = sp.sd / g;
-                            if s >= CUTOFF * sigma {
-                                1.0
-                            } else if s <= -CUTOFF * sigma {
-                                0.0
-                            } else {
-                                let k = logistic(s / sigma);
-                                // ∂sd/∂(front offset): the front point slides along the ray.
-                                let along = if na_d.abs() > 1e-12 {
-                                    -dot(sp.n, d) / na_d
-                                } else {
-                                    0.0
-                                };
-                                negs.push(Neg {
-                                    part: b as u32,
-                                    kappa: k,
-                                    dk: k * (1.0 - k) / (sigma * g),
-                                    sp,
-                                    front: sp_a.map(|a| (part_a, along, a)),
-                                });
-                                k
-                            }
-                        }
-                    };
-                    kappa *= kb;
-                    if deepest.is_none_or(|(k, _)| kb < k) {
-                        deepest = Some((kb, b));
-                    }
-                }
-                let neg_range = (first_neg as u32, negs.len() as u32);
-                let sh_front = self.shade_of(idx, na);
-                // What the cut shows: the solid after leaving the deepest subtracted part
-                // (nothing for a hole through); outside every subtracted part, the front.
-                let (cavity, sh_cavity) = if kappa < 1.0 {
-                    let exit = deepest
-                        .and_then(|(_, b)| get(b))
-                        .and_then(|s| s.hit)
-                        .filter(|h| h.t1 > ta);
-                    match exit {
-                        Some(h) => match first_solid_from(&item.program, st, h.t1) {
-                            Some((_, nc)) => (1.0, self.shade_of(idx, nc)),
-                            None => (0.0, 0.0),
-                        },
-                        None => (1.0, sh_front),
-                    }
-                } else {
-                    (1.0, sh_front)
-                };
-                let alpha = alpha_a * (kappa + (1.0 - kappa) * cavity);
-                if alpha > 0.0 {
-                    layers.push(Layer {
-                        depth: ta,
-                        alpha,
-                        premult: alpha_a * (kappa * sh_front + (1.0 - kappa) * cavity * sh_cavity),
-                        split: true,
-                        alpha_a,
-                        kappa,
-                        cavity,
-                        sh_front,
-                        sh_cavity,
-                        negs: neg_range,
-                        ..plain
-                    });
-                } else {
-                    states.truncate(first_state);
-                    negs.truncate(first_neg);
-                }
-                continue;
-            }
-            let (alpha, keep) = match self.sigma {
-                None => (if visible.is_some() { 1.0 } else { 0.0 }, 1.0),
-                Some(_) => {
-                    if item.is_single() {
-                        (st[0].1.alpha, 1.0)
-                    } else {
-                        let a =
-                            eval_soft(&item.program, &|p| get(p).map_or(0.0, |s| s.alpha), None).0;
-                        let support = eval_inside(&item.program, &|p| {
-                            get(p).is_some_and(|s| s.hit.is_some())
-                        });
-                        let keep = if support && visible.is_none() {
-                            0.0
-                        } else {
-                            1.0
-                        };
-                        (a * keep, keep)
-                    }
-                }
-            };
-            if alpha <= 0.0 {
-                states.truncate(first_state);
-                continue;
-            }
-            let (depth, n_world) = match visible {
-                Some((t, n)) => (t, n),
-                None => fallback(),
-            };
-            layers.push(Layer {
-                depth,
-                alpha,
-                premult: alpha * self.shade_of(idx, n_world),
-                keep,
-                ..plain
-            });
+            self.item_layer(idx, item, u, o, d, scratch, &mut best_hard);
         }
-        // Front-to-back compositing.
-        layers.sort_by(|a, b| a.depth.total_cmp(&b.depth));
-        let n = layers.len();
-        let mut m = 0.0;
-        let mut s = 0.0;
-        let mut t = 1.0;
-        for l in layers.iter() {
-            s += t * l.premult;
-            m += t * l.alpha;
-            t *= 1.0 - l.alpha;
-        }
+        let (m, s) = composite(&mut scratch.layers);
         if let (Some(entries), Some(_)) = (entries, self.sigma) {
-            // Composites of what lies behind each layer.
-            mb.clear();
-            mb.resize(n + 1, 0.0);
-            sb.clear();
-            sb.resize(n + 1, 0.0);
-            for k in (0..n).rev() {
-                let l = &layers[k];
-                mb[k] = l.alpha + (1.0 - l.alpha) * mb[k + 1];
-                sb[k] = l.premult + (1.0 - l.alpha) * sb[k + 1];
-            }
-            let mut tk = 1.0;
-            let pixel = py * frame.width + px;
-            for k in 0..n {
-                let l = layers[k];
-                // ∂M/∂α, ∂S/∂α and ∂S/∂P of this layer.
-                let dm_da = tk * (1.0 - mb[k + 1]);
-                let ds_da = -tk * sb[k + 1];
-                let ds_dp = tk;
-                tk *= 1.0 - l.alpha;
-                if dm_da == 0.0 && ds_da == 0.0 && ds_dp == 0.0 {
-                    continue;
-                }
-                let item = &self.scene.items[l.item as usize];
-                let mine = &states[l.states.0 as usize..l.states.1 as usize];
-                // How this layer's α and P depend on the (first operand's) coverage.
-                let (a_factor, p_factor) = if l.split {
-                    (
-                        l.kappa + (1.0 - l.kappa) * l.cavity,
-                        l.kappa * l.sh_front + (1.0 - l.kappa) * l.cavity * l.sh_cavity,
-                    )
-                } else {
-                    (1.0, l.premult / l.alpha)
-                };
-                let dm_dc = dm_da * a_factor;
-                let ds_dc = ds_da * a_factor + ds_dp * p_factor;
-                let program = item.positive();
-                for &(p, st) in mine {
-                    if !st.hull || st.cov.n == 0 {
-                        continue;
-                    }
-                    let da_item = if item.is_single() {
-                        1.0
-                    } else {
-                        let get = |q: usize| {
-                            mine.iter()
-                                .find(|(r, _)| *r as usize == q)
-                                .map_or(0.0, |x| x.1.alpha)
-                        };
-                        eval_soft(program, &get, Some(p as usize)).1 * l.keep
-                    };
-                    if da_item == 0.0 {
-                        continue;
-                    }
-                    let Some(h) = &self.prep.hulls[p as usize] else {
-                        continue;
-                    };
-                    for &(edge, dalpha_ds) in &st.cov.edges[..st.cov.n] {
-                        let f = da_item * dalpha_ds;
-                        let (ga, gb) = h.edge_gradient(edge as usize, u);
-                        entries.edges.push(Entry {
-                            pixel,
-                            part: p,
-                            edge,
-                            dm: dm_dc * f,
-                            ds: ds_dc * f,
-                            ga,
-                            gb,
-                        });
-                    }
-                }
-                // Subtracted parts, through κ.
-                if !l.split {
-                    continue;
-                }
-                let dm_dk = dm_da * l.alpha_a * (1.0 - l.cavity);
-                let ds_dk = ds_da * l.alpha_a * (1.0 - l.cavity)
-                    + ds_dp * l.alpha_a * (l.sh_front - l.cavity * l.sh_cavity);
-                if dm_dk == 0.0 && ds_dk == 0.0 {
-                    continue;
-                }
-                for ng in &negs[l.negs.0 as usize..l.negs.1 as usize] {
-                    let others = if ng.kappa > 0.0 {
-                        l.kappa / ng.kappa
-                    } else {
-                        0.0
-                    };
-                    let f = others * ng.dk;
-                    if f == 0.0 {
-                        continue;
-                    }
-                    entries.surfaces.push(SurfaceEntry {
-                        pixel,
-                        part: ng.part,
-                        dm: dm_dk * f,
-                        ds: ds_dk * f,
-                        n: ng.sp.n,
-                        q: ng.sp.q,
-                        ldq: ng.sp.ldq,
-                    });
-                    if let Some((pa, along, spa)) = ng.front
-                        && along != 0.0
-                    {
-                        entries.surfaces.push(SurfaceEntry {
-                            pixel,
-                            part: pa,
-                            dm: dm_dk * f * along,
-                            ds: ds_dk * f * along,
-                            n: spa.n,
-                            q: spa.q,
-                            ldq: spa.ldq,
-                        });
-                    }
-                }
-            }
+            self.record_entries(scratch, u, py * frame.width + px, entries);
         }
         let (item, normal, depth) = match best_hard {
             Some((t, i, n)) => (i, frame.to_eye(n), t),
-            None => (-1, [0.0; 3], f64::INFINITY),
+            None => (-1, DVec3::ZERO, f64::INFINITY),
         };
         PixelOut {
             m,
@@ -521,33 +196,479 @@ impl PixelCtx<'_> {
             depth,
         }
     }
+
+    /// Item `idx` at this pixel: its parts' states (kept in the scratch while the item has a
+    /// layer), its exact visible surface (against `best_hard`) and its layer.
+    #[allow(clippy::too_many_arguments)]
+    fn item_layer(
+        &self,
+        idx: usize,
+        item: &Item,
+        u: [f64; 2],
+        o: DVec3,
+        d: DVec3,
+        scratch: &mut Scratch,
+        best_hard: &mut Option<(f64, i32, DVec3)>,
+    ) {
+        let Scratch {
+            layers,
+            states,
+            negs,
+            ..
+        } = scratch;
+        let first_state = states.len();
+        for &p in &item.parts {
+            let st = self.part_at(p, u, o, d);
+            states.push((p as u32, st));
+        }
+        let st = &states[first_state..];
+        let range = (first_state as u32, states.len() as u32);
+        // The exact visible surface of the item.
+        let visible: Option<(f64, DVec3)> = if item.is_single() {
+            st[0].1.hit.filter(|h| h.t0 > 0.0).map(|h| (h.t0, h.n0))
+        } else {
+            visible_surface(&item.program, st)
+        };
+        if let Some((t, n)) = visible
+            && best_hard.is_none_or(|b| t < b.0)
+        {
+            *best_hard = Some((t, idx as i32, n));
+        }
+        let plain = Layer {
+            depth: 0.0,
+            alpha: 0.0,
+            premult: 0.0,
+            item: idx as u32,
+            keep: 1.0,
+            states: range,
+            split: false,
+            alpha_a: 1.0,
+            kappa: 1.0,
+            cavity: 0.0,
+            sh_front: 0.0,
+            sh_cavity: 0.0,
+            negs: (0, 0),
+        };
+        let layer = match &item.split {
+            // A difference with soft cut edges: the first operand's front surface, kept where
+            // it is outside every subtracted part, and the cavity behind.
+            Some((_, negatives)) => self.split_layer(idx, item, negatives, st, plain, o, d, negs),
+            None => self.plain_layer(idx, item, st, visible, plain, o, d),
+        };
+        match layer {
+            Some(l) => layers.push(l),
+            None => states.truncate(first_state),
+        }
+    }
+
+    /// The layer of an item that is not a split difference (`None` where it is absent).
+    #[allow(clippy::too_many_arguments)]
+    fn plain_layer(
+        &self,
+        idx: usize,
+        item: &Item,
+        st: &[(u32, PartAt)],
+        visible: Option<(f64, DVec3)>,
+        plain: Layer,
+        o: DVec3,
+        d: DVec3,
+    ) -> Option<Layer> {
+        let (alpha, keep) = match self.sigma {
+            None => (if visible.is_some() { 1.0 } else { 0.0 }, 1.0),
+            Some(_) => {
+                if item.is_single() {
+                    (st[0].1.alpha, 1.0)
+                } else {
+                    let a = eval_soft(&item.program, &|p| alpha_of(st, p), None).0;
+                    let support = eval_inside(&item.program, &|p| {
+                        state_of(st, p).is_some_and(|s| s.hit.is_some())
+                    });
+                    let keep = if support && visible.is_none() {
+                        0.0
+                    } else {
+                        1.0
+                    };
+                    (a * keep, keep)
+                }
+            }
+        };
+        if alpha <= 0.0 {
+            return None;
+        }
+        let (depth, n_world) = match visible {
+            Some((t, n)) => (t, n),
+            None => self.fallback(item, st, o, d),
+        };
+        Some(Layer {
+            depth,
+            alpha,
+            premult: alpha * self.shade_of(idx, n_world),
+            keep,
+            ..plain
+        })
+    }
+
+    /// The continuation of an item's first part's face past the silhouette: its depth and
+    /// world normal.
+    fn fallback(&self, item: &Item, st: &[(u32, PartAt)], o: DVec3, d: DVec3) -> (f64, DVec3) {
+        let first = item.parts[0];
+        let g = &self.scene.parts[first];
+        let n = match state_of(st, first).and_then(|s| s.hit) {
+            Some(h) => h.n0,
+            None => g.near_normal(o, d),
+        };
+        (self.prep.frame.depth(g.center), n)
+    }
+
+    /// The layer of a split difference (`None` where it is absent); its subtracted parts
+    /// near the front point go to `negs`.
+    #[allow(clippy::too_many_arguments)]
+    fn split_layer(
+        &self,
+        idx: usize,
+        item: &Item,
+        negatives: &[usize],
+        st: &[(u32, PartAt)],
+        plain: Layer,
+        o: DVec3,
+        d: DVec3,
+        negs: &mut Vec<Neg>,
+    ) -> Option<Layer> {
+        let pos = item.positive();
+        let front: Option<(f64, DVec3, usize)> = if pos.len() == 1 {
+            st[0].1.hit.filter(|h| h.t0 > 0.0).map(|h| (h.t0, h.n0, 0))
+        } else {
+            visible_surface_at(pos, st)
+        };
+        let alpha_a = match self.sigma {
+            None => {
+                if front.is_some() {
+                    1.0
+                } else {
+                    0.0
+                }
+            }
+            Some(_) => eval_soft(pos, &|p| alpha_of(st, p), None).0,
+        };
+        if alpha_a <= 0.0 {
+            return None;
+        }
+        let Some((ta, na, ka)) = front else {
+            let (depth, n) = self.fallback(item, st, o, d);
+            let sh = self.shade_of(idx, n);
+            return Some(Layer {
+                depth,
+                alpha: alpha_a,
+                premult: alpha_a * sh,
+                ..plain
+            });
+        };
+        let first_neg = negs.len();
+        let (kappa, deepest) = self.cut(negatives, st, (ta, na, ka), o, d, negs);
+        let neg_range = (first_neg as u32, negs.len() as u32);
+        let sh_front = self.shade_of(idx, na);
+        // What the cut shows: the solid after leaving the deepest subtracted part (nothing
+        // for a hole through); outside every subtracted part, the front.
+        let (cavity, sh_cavity) = if kappa < 1.0 {
+            let exit = deepest
+                .and_then(|(_, b)| state_of(st, b))
+                .and_then(|s| s.hit)
+                .filter(|h| h.t1 > ta);
+            match exit {
+                Some(h) => match first_solid_from(&item.program, st, h.t1) {
+                    Some((_, nc)) => (1.0, self.shade_of(idx, nc)),
+                    None => (0.0, 0.0),
+                },
+                None => (1.0, sh_front),
+            }
+        } else {
+            (1.0, sh_front)
+        };
+        let alpha = alpha_a * (kappa + (1.0 - kappa) * cavity);
+        if alpha > 0.0 {
+            Some(Layer {
+                depth: ta,
+                alpha,
+                premult: alpha_a * (kappa * sh_front + (1.0 - kappa) * cavity * sh_cavity),
+                split: true,
+                alpha_a,
+                kappa,
+                cavity,
+                sh_front,
+                sh_cavity,
+                negs: neg_range,
+                ..plain
+            })
+        } else {
+            negs.truncate(first_neg);
+            None
+        }
+    }
+
+    /// How much of a split difference's front point (at ray parameter `ta`, normal `na`, on
+    /// state `ka`'s part) its subtracted parts keep: the product `κ` of their soft
+    /// outsides, and the deepest cut `(κ_b, b)`. Parts in the soft band go to `negs`.
+    fn cut(
+        &self,
+        negatives: &[usize],
+        st: &[(u32, PartAt)],
+        (ta, na, ka): (f64, DVec3, usize),
+        o: DVec3,
+        d: DVec3,
+        negs: &mut Vec<Neg>,
+    ) -> (f64, Option<(f64, usize)>) {
+        let frame = &self.prep.frame;
+        let pa = o + d * ta;
+        // The front point as a material point of its part: the front moves with it.
+        let part_a = st[ka].0;
+        let sp_a = self.scene.parts[part_a as usize].surface_distance(pa);
+        let na_d = na.dot(d);
+        let mut kappa = 1.0;
+        let mut deepest: Option<(f64, usize)> = None;
+        for &b in negatives {
+            let Some(sb_) = state_of(st, b) else { continue };
+            let gb = &self.scene.parts[b];
+            let kb = match self.sigma {
+                None => {
+                    let inside = sb_.hit.is_some_and(|h| h.t0 <= ta && ta <= h.t1);
+                    if inside { 0.0 } else { 1.0 }
+                }
+                Some(sigma) => {
+                    let Some(sp) = gb.surface_distance(pa) else {
+                        continue;
+                    };
+                    let g = pixel_scale(frame, d, ta, na, sp.n);
+                    let s = sp.sd / g;
+                    if s >= CUTOFF * sigma {
+                        1.0
+                    } else if s <= -CUTOFF * sigma {
+                        0.0
+                    } else {
+                        let k = logistic(s / sigma);
+                        // ∂sd/∂(front offset): the front point slides along the ray.
+                        let along = if na_d.abs() > RENDER_ROUNDOFF {
+                            -sp.n.dot(d) / na_d
+                        } else {
+                            0.0
+                        };
+                        negs.push(Neg {
+                            part: b as u32,
+                            kappa: k,
+                            dk: k * (1.0 - k) / (sigma * g),
+                            sp,
+                            front: sp_a.map(|a| (part_a, along, a)),
+                        });
+                        k
+                    }
+                }
+            };
+            kappa *= kb;
+            if deepest.is_none_or(|(k, _)| kb < k) {
+                deepest = Some((kb, b));
+            }
+        }
+        (kappa, deepest)
+    }
+
+    /// The pixel's gradient entries: how `M` and `S` change with every soft edge and cut
+    /// of the composited layers.
+    fn record_entries(
+        &self,
+        scratch: &mut Scratch,
+        u: [f64; 2],
+        pixel: u32,
+        entries: &mut Entries,
+    ) {
+        let Scratch {
+            layers,
+            states,
+            negs,
+            mb,
+            sb,
+        } = scratch;
+        let n = layers.len();
+        // Composites of what lies behind each layer.
+        mb.clear();
+        mb.resize(n + 1, 0.0);
+        sb.clear();
+        sb.resize(n + 1, 0.0);
+        for k in (0..n).rev() {
+            let l = &layers[k];
+            mb[k] = l.alpha + (1.0 - l.alpha) * mb[k + 1];
+            sb[k] = l.premult + (1.0 - l.alpha) * sb[k + 1];
+        }
+        let mut tk = 1.0;
+        for k in 0..n {
+            let l = layers[k];
+            // ∂M/∂α, ∂S/∂α and ∂S/∂P of this layer.
+            let dm_da = tk * (1.0 - mb[k + 1]);
+            let ds_da = -tk * sb[k + 1];
+            let ds_dp = tk;
+            tk *= 1.0 - l.alpha;
+            if dm_da == 0.0 && ds_da == 0.0 && ds_dp == 0.0 {
+                continue;
+            }
+            let mine = &states[l.states.0 as usize..l.states.1 as usize];
+            // How this layer's α and P depend on the (first operand's) coverage.
+            let (a_factor, p_factor) = if l.split {
+                (
+                    l.kappa + (1.0 - l.kappa) * l.cavity,
+                    l.kappa * l.sh_front + (1.0 - l.kappa) * l.cavity * l.sh_cavity,
+                )
+            } else {
+                (1.0, l.premult / l.alpha)
+            };
+            let dm_dc = dm_da * a_factor;
+            let ds_dc = ds_da * a_factor + ds_dp * p_factor;
+            self.edge_entries(&l, mine, (dm_dc, ds_dc), u, pixel, entries);
+            // Subtracted parts, through κ.
+            if !l.split {
+                continue;
+            }
+            let dm_dk = dm_da * l.alpha_a * (1.0 - l.cavity);
+            let ds_dk = ds_da * l.alpha_a * (1.0 - l.cavity)
+                + ds_dp * l.alpha_a * (l.sh_front - l.cavity * l.sh_cavity);
+            if dm_dk == 0.0 && ds_dk == 0.0 {
+                continue;
+            }
+            let mine = &negs[l.negs.0 as usize..l.negs.1 as usize];
+            cut_entries(&l, mine, (dm_dk, ds_dk), pixel, entries);
+        }
+    }
+
+    /// Entries of a layer's soft edges, with `(∂M, ∂S)` per unit of its coverage `dc`.
+    fn edge_entries(
+        &self,
+        l: &Layer,
+        mine: &[(u32, PartAt)],
+        (dm_dc, ds_dc): (f64, f64),
+        u: [f64; 2],
+        pixel: u32,
+        entries: &mut Entries,
+    ) {
+        let item = &self.scene.items[l.item as usize];
+        let program = item.positive();
+        for &(p, st) in mine {
+            if !st.hull || st.cov.n == 0 {
+                continue;
+            }
+            let da_item = if item.is_single() {
+                1.0
+            } else {
+                let get = |q: usize| alpha_of(mine, q);
+                eval_soft(program, &get, Some(p as usize)).1 * l.keep
+            };
+            if da_item == 0.0 {
+                continue;
+            }
+            let Some(h) = &self.prep.hulls[p as usize] else {
+                continue;
+            };
+            for &(edge, dalpha_ds) in &st.cov.edges[..st.cov.n] {
+                let f = da_item * dalpha_ds;
+                let (ga, gb) = h.edge_gradient(edge as usize, u);
+                entries.edges.push(Entry {
+                    pixel,
+                    part: p,
+                    edge,
+                    dm: dm_dc * f,
+                    ds: ds_dc * f,
+                    ga,
+                    gb,
+                });
+            }
+        }
+    }
+}
+
+/// Entries of a split layer's subtracted parts `negs`, with `(∂M, ∂S)` per unit of its `κ`.
+fn cut_entries(
+    l: &Layer,
+    negs: &[Neg],
+    (dm_dk, ds_dk): (f64, f64),
+    pixel: u32,
+    entries: &mut Entries,
+) {
+    for ng in negs {
+        let others = if ng.kappa > 0.0 {
+            l.kappa / ng.kappa
+        } else {
+            0.0
+        };
+        let f = others * ng.dk;
+        if f == 0.0 {
+            continue;
+        }
+        entries.surfaces.push(SurfaceEntry {
+            pixel,
+            part: ng.part,
+            dm: dm_dk * f,
+            ds: ds_dk * f,
+            n: ng.sp.n,
+            q: ng.sp.q,
+            ldq: ng.sp.ldq,
+        });
+        if let Some((pa, along, spa)) = ng.front
+            && along != 0.0
+        {
+            entries.surfaces.push(SurfaceEntry {
+                pixel,
+                part: pa,
+                dm: dm_dk * f * along,
+                ds: ds_dk * f * along,
+                n: spa.n,
+                q: spa.q,
+                ldq: spa.ldq,
+            });
+        }
+    }
+}
+
+/// Front-to-back compositing of the layers (sorted by depth here): `(M, S)`.
+fn composite(layers: &mut [Layer]) -> (f64, f64) {
+    layers.sort_by(|a, b| a.depth.total_cmp(&b.depth));
+    let mut m = 0.0;
+    let mut s = 0.0;
+    let mut t = 1.0;
+    for l in layers.iter() {
+        s += t * l.premult;
+        m += t * l.alpha;
+        t *= 1.0 - l.alpha;
+    }
+    (m, s)
+}
+
+/// Part `p`'s state among an item's states.
+fn state_of(st: &[(u32, PartAt)], p: usize) -> Option<PartAt> {
+    st.iter().find(|(q, _)| *q as usize == p).map(|x| x.1)
+}
+
+/// Part `p`'s coverage among an item's states (0 if it has none).
+fn alpha_of(st: &[(u32, PartAt)], p: usize) -> f64 {
+    state_of(st, p).map_or(0.0, |s| s.alpha)
 }
 
 /// Pixel-space length of the gradient of a distance along normal `nb`, for a point that
 /// moves on the plane (normal `na`) hit at parameter `t` of the ray `d`: how many world
 /// units of that distance one pixel is.
-fn pixel_scale(frame: &Frame, d: Vec3, t: f64, na: Vec3, nb: Vec3) -> f64 {
-    let dd = dot(na, d);
+fn pixel_scale(frame: &Frame, d: DVec3, t: f64, na: DVec3, nb: DVec3) -> f64 {
+    let dd = na.dot(d);
     let f = frame.focal;
-    let axes = [scale(frame.right, 1.0 / f), scale(frame.up, -1.0 / f)];
+    let axes = [frame.right * (1.0 / f), frame.up * (-1.0 / f)];
     let mut g2 = 0.0;
     for dv in axes {
-        let dp = if dd.abs() < 1e-12 {
+        let dp = if dd.abs() < RENDER_ROUNDOFF {
             // Grazing: the point slides along the ray; count the plain footprint.
-            if frame.ortho { dv } else { scale(dv, t) }
+            if frame.ortho { dv } else { dv * t }
         } else if frame.ortho {
-            let dt = -dot(na, dv) / dd;
-            [dv[0] + dt * d[0], dv[1] + dt * d[1], dv[2] + dt * d[2]]
+            let dt = -na.dot(dv) / dd;
+            dv + d * dt
         } else {
-            let dt = -t * dot(na, dv) / dd;
-            [
-                t * dv[0] + dt * d[0],
-                t * dv[1] + dt * d[1],
-                t * dv[2] + dt * d[2],
-            ]
+            let dt = -t * na.dot(dv) / dd;
+            dv * t + d * dt
         };
-        let c = dot(nb, dp);
+        let c = nb.dot(dp);
         g2 += c * c;
     }
-    g2.sqrt().max(1e-12)
+    g2.sqrt().max(PIXEL_SCALE_FLOOR)
 }

@@ -3,8 +3,8 @@
 //! subtracted part carries that part's normal turned inward.
 
 use super::pixel::PartAt;
-use crate::render::camera::Vec3;
 use crate::render::scene::{Op, eval_inside};
+use glam::DVec3;
 
 /// The first point at or after `t_start` where the item's solid begins (the point just
 /// after `t_start` counts: it shows the surface being left there, turned inward).
@@ -12,7 +12,7 @@ pub(super) fn first_solid_from(
     program: &[Op],
     st: &[(u32, PartAt)],
     t_start: f64,
-) -> Option<(f64, Vec3)> {
+) -> Option<(f64, DVec3)> {
     let index_of = |p: usize| st.iter().position(|(q, _)| *q as usize == p);
     let mut inside: Vec<bool> = st
         .iter()
@@ -26,7 +26,7 @@ pub(super) fn first_solid_from(
             .iter()
             .position(|(_, s)| s.hit.is_some_and(|h| h.t1 == t_start))?;
         let h = st[k].1.hit?;
-        return Some((t_start, [-h.n1[0], -h.n1[1], -h.n1[2]]));
+        return Some((t_start, -h.n1));
     }
     let mut events: Vec<(f64, usize, bool)> = Vec::new();
     for (k, (_, s)) in st.iter().enumerate() {
@@ -44,11 +44,7 @@ pub(super) fn first_solid_from(
         inside[k] = entry;
         if member(&inside) {
             let h = st[k].1.hit?;
-            let n = if entry {
-                h.n0
-            } else {
-                [-h.n1[0], -h.n1[1], -h.n1[2]]
-            };
+            let n = if entry { h.n0 } else { -h.n1 };
             return Some((t, n));
         }
     }
@@ -57,7 +53,7 @@ pub(super) fn first_solid_from(
 
 /// The first point along the ray where a boolean item's solid begins, with its outward
 /// normal (an exit from a subtracted part shows that part's surface turned inward).
-pub(super) fn visible_surface(program: &[Op], st: &[(u32, PartAt)]) -> Option<(f64, Vec3)> {
+pub(super) fn visible_surface(program: &[Op], st: &[(u32, PartAt)]) -> Option<(f64, DVec3)> {
     visible_surface_at(program, st).map(|(t, n, _)| (t, n))
 }
 
@@ -65,17 +61,18 @@ pub(super) fn visible_surface(program: &[Op], st: &[(u32, PartAt)]) -> Option<(f
 pub(super) fn visible_surface_at(
     program: &[Op],
     st: &[(u32, PartAt)],
-) -> Option<(f64, Vec3, usize)> {
-    let mut events: Vec<(f64, usize, bool)> = Vec::with_capacity(2 * st.len());
+) -> Option<(f64, DVec3, usize)> {
+    // Entries and exits, each with the outward normal of the surface it shows.
+    let mut events: Vec<(f64, usize, bool, DVec3)> = Vec::with_capacity(2 * st.len());
     let mut inside: Vec<bool> = vec![false; st.len()];
     for (k, (_, s)) in st.iter().enumerate() {
         if let Some(h) = s.hit {
             if h.t0 > 0.0 {
-                events.push((h.t0, k, true));
+                events.push((h.t0, k, true, h.n0));
             } else {
                 inside[k] = true;
             }
-            events.push((h.t1, k, false));
+            events.push((h.t1, k, false, -h.n1));
         }
     }
     if events.is_empty() {
@@ -86,16 +83,10 @@ pub(super) fn visible_surface_at(
     let member =
         |inside: &[bool]| eval_inside(program, &|p| index_of(p).is_some_and(|k| inside[k]));
     let mut was = member(&inside);
-    for &(t, k, entry) in &events {
+    for &(t, k, entry, n) in &events {
         inside[k] = entry;
         let now = member(&inside);
         if now && !was && t > 0.0 {
-            let h = st[k].1.hit.expect("events come from hits");
-            let n = if entry {
-                h.n0
-            } else {
-                [-h.n1[0], -h.n1[1], -h.n1[2]]
-            };
             return Some((t, n, k));
         }
         was = now;
