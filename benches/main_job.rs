@@ -3,7 +3,7 @@
 //! printed from `/proc/self/status` (VmHWM) after the runs.
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use reparamc::compile::{Options, reparameterize};
+use reparamc::command::compile::{Options, reparameterize};
 use reparamc::front::source::SourceMap;
 use std::path::{Path, PathBuf};
 

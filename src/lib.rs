@@ -28,7 +28,6 @@ static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
 pub mod analysis;
 pub mod back;
 pub mod command;
-pub mod compile;
 pub mod fit;
 pub mod front;
 pub mod geom;

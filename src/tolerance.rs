@@ -46,6 +46,59 @@ impl Tolerance {
 // ---- geometry (geom: exact volumes, ray intervals, quadrature) --------------------------
 
 // ---- analysis (candidates, rank, projection, discovery) ---------------------------------
+// Besides these, the analysis uses [`RELATIVE_EPSILON`] (does a relation hold, did a rigid
+// move succeed) and [`RELATIVE_ROUNDOFF`] (rank of constraint rows relative to their largest
+// entry, round-off dropped from sparse rows, pivots of unit-scale coefficients, a fraction
+// read back from a float, a step that divides a value).
+
+/// The pseudo-inverse's cutoff, relative to the largest singular value (times the matrix's
+/// larger dimension): singular values below it are round-off. A decade below
+/// [`RELATIVE_ROUNDOFF`] so a least-squares solve keeps every direction a rank test keeps.
+pub const PSEUDO_INVERSE_CUTOFF: f64 = 1e-10;
+
+/// A coefficient of a solved slot's expression below this (absolute; the coefficients are
+/// unit-scale fractions such as ±1, ±½) is round-off of the elimination and is dropped.
+pub const COEFFICIENT_ZERO: f64 = 1e-12;
+
+/// The continued fraction that reads a coefficient back as a fraction stops when the
+/// remainder is below this (absolute, of a number below 1): the expansion is exact.
+pub const FRACTION_REMAINDER_ZERO: f64 = 1e-15;
+
+/// When a new row updates the stored rows of a row basis, entries below this fraction of
+/// the [`RELATIVE_ROUNDOFF`] threshold are dropped: updates cancel exactly more often than a
+/// reduction does, so only far smaller leftovers are round-off.
+pub const BASIS_UPDATE_ZERO: f64 = 1e-3;
+
+/// The projection metric's ridge, relative to its largest diagonal entry: enough to make the
+/// normal equations positive definite, far below any face's weight.
+pub const PROJECTION_RIDGE: f64 = RELATIVE_ROUNDOFF;
+
+/// The first extra ridge tried when a Cholesky factorisation fails on round-off, relative
+/// to the matrix's largest diagonal entry (grown a hundredfold per try).
+pub const CHOLESKY_RETRY_RIDGE: f64 = 1e-12;
+
+/// The smallest scale a matrix's diagonal is taken to have (absolute), so a zero matrix
+/// still gets a positive ridge: far below any weight a model's faces give.
+pub const SCALE_FLOOR: f64 = 1e-300;
+
+/// Volume lost by removing a part, as a fraction of the part's own volume in the input,
+/// below which a variation does without the part (it is hidden inside others or shrunk to
+/// nothing). Relative to the part, not the model, so a small part of a large model counts.
+pub const OPTIONAL_PART_LOSS: f64 = 1e-3;
+
+/// The smallest slider step (absolute, world units), so a range of zero width still gets
+/// a step: far below any size a printed model distinguishes.
+pub const MIN_SLIDER_STEP: f64 = 1e-6;
+
+/// The smallest model size (absolute) the shown values' precision is derived from, so a
+/// flat or empty model still gets a finite quantum.
+pub const MIN_DISPLAY_SIZE: f64 = 1e-9;
+
+// ---- back end (what is written for people) ----------------------------------------------
+
+/// The distortion plot's smallest vertical scale (IoU loss), so a flat curve of zeros is
+/// still drawn.
+pub const MIN_PLOT_SCALE: f64 = 1e-6;
 
 // ---- rendering (cameras, soft silhouettes, GPU) -----------------------------------------
 

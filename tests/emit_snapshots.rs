@@ -5,7 +5,7 @@
 mod common;
 
 use common::*;
-use reparamc::compile::{Options, reparameterize};
+use reparamc::command::compile::{Options, reparameterize};
 use reparamc::front::source::SourceMap;
 use std::path::{Path, PathBuf};
 

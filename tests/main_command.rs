@@ -7,7 +7,7 @@ mod common;
 
 use common::*;
 use reparamc::analysis::candidates::Candidates;
-use reparamc::compile::{Compiled, Options, reparameterize};
+use reparamc::command::compile::{Compiled, Options, reparameterize};
 use reparamc::front::source::SourceMap;
 use reparamc::ir::feature::part_features;
 use reparamc::ir::{CsgNode, Model, Part};
@@ -349,4 +349,53 @@ fn ast_shows_every_slider_with_group_description_and_range() {
         );
     }
     assert!(text.contains("//Group(\"Parts\")"), "no part switches");
+}
+
+#[test]
+fn diff_prints_what_changed_from_input_to_output() {
+    // In a folder of its own, so the diff's headers are the plain file names.
+    let dir = tempfile(Path::new("stool.scad"), "dir");
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::copy(repo().join("examples/stool.scad"), dir.join("stool.scad")).unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_reparamc"))
+        .args(["stool.scad", "-o", "stool_param.scad", "--diff"])
+        .current_dir(&dir)
+        .env("NO_COLOR", "1")
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "{stderr}");
+    let diff = String::from_utf8(out.stdout).unwrap();
+    let written = std::fs::read_to_string(dir.join("stool_param.scad")).unwrap();
+    let input = std::fs::read_to_string(dir.join("stool.scad")).unwrap();
+    let _ = std::fs::remove_dir_all(&dir);
+    assert!(
+        diff.starts_with("--- stool.scad\n+++ stool_param.scad\n@@ "),
+        "{diff}"
+    );
+    // Every removed line is the input's and every added line the output's.
+    for line in diff.lines().skip(2) {
+        if let Some(l) = line.strip_prefix('-') {
+            assert!(input.lines().any(|i| i == l), "not in the input: {l}");
+        } else if let Some(l) = line.strip_prefix('+') {
+            assert!(written.lines().any(|o| o == l), "not in the output: {l}");
+        }
+    }
+    assert!(stderr.contains("stool_param.scad: "), "{stderr}");
+    let mut settings = insta::Settings::clone_current();
+    settings.set_snapshot_path("../snapshots");
+    settings.set_prepend_module_to_snapshot(false);
+    settings.bind(|| insta::assert_snapshot!("diff_stool", diff));
+}
+
+#[test]
+fn diff_and_standard_output_do_not_mix() {
+    let out = Command::new(env!("CARGO_BIN_EXE_reparamc"))
+        .args(["examples/stool.scad", "-o", "-", "--diff"])
+        .current_dir(repo())
+        .env("NO_COLOR", "1")
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(out.stdout.is_empty());
 }

@@ -3,7 +3,7 @@
 //! and none of them may become a switch.
 
 use reparamc::analysis::optional::optional_parts;
-use reparamc::compile::VolumeSimilarity;
+use reparamc::analysis::similarity::VolumeSimilarity;
 use reparamc::front::source::SourceMap;
 
 /// `n` visible 10-unit cubes in a row, and one small cube hidden inside the first.

@@ -6,6 +6,7 @@
 
 use super::slotblocks::SlotBlocks;
 use crate::ir::{Affine, SlotId};
+use crate::tolerance::{PSEUDO_INVERSE_CUTOFF, RELATIVE_ROUNDOFF};
 use nalgebra::DMatrix;
 
 /// The rows' linear parts as a dense `rows × slots` matrix.
@@ -26,7 +27,7 @@ pub fn rank(rows: &[&Affine], slots: usize) -> usize {
     }
     let m = matrix(rows, slots);
     let scale = m.iter().fold(0.0f64, |acc, v| acc.max(v.abs())).max(1.0);
-    m.rank(1e-9 * scale * (rows.len().max(slots) as f64))
+    m.rank(RELATIVE_ROUNDOFF * scale * (rows.len().max(slots) as f64))
 }
 
 /// The dimension of the space the rows leave free.
@@ -41,7 +42,8 @@ pub fn pinv(m: &DMatrix<f64>) -> DMatrix<f64> {
     }
     let svd = m.clone().svd(true, true);
     let smax = svd.singular_values.iter().fold(0.0f64, |a, &s| a.max(s));
-    let eps = 1e-10 * smax.max(f64::MIN_POSITIVE) * (m.nrows().max(m.ncols()) as f64);
+    let eps =
+        PSEUDO_INVERSE_CUTOFF * smax.max(f64::MIN_POSITIVE) * (m.nrows().max(m.ncols()) as f64);
     svd.pseudo_inverse(eps)
         .unwrap_or_else(|_| DMatrix::zeros(m.ncols(), m.nrows()))
 }

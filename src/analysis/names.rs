@@ -4,9 +4,14 @@
 //! otherwise the slot's role (`height`, `width`, `radius`, `x`) is prefixed with the words
 //! shared by the parts whose slot it drives unchanged (`left_front_leg.height`,
 //! `right_back_leg.height`, … → `leg_height`). Names never collide with an identifier of
-//! the program, a keyword, or each other.
+//! the program ([`identifiers`]), a keyword, or each other. Part switches are named alike
+//! ([`toggle_name`]): `show_` and the words their parts share.
 
+use super::optional::Toggle;
 use super::reparam::Solution;
+use crate::front::ast::{Expr, ExprKind, InstanceKind, Stmt, StmtKind};
+use crate::front::load::Loaded;
+use crate::front::walk::{Visitor, visit_stmts};
 use crate::ir::Model;
 use std::collections::HashSet;
 
@@ -127,14 +132,16 @@ fn role_words(role: &str) -> String {
         "height" => "Height (z)".into(),
         "x" | "y" | "z" => format!("Position in {role}"),
         "size" => "Size".into(),
-        other => {
-            let mut s = other.replace('_', " ");
-            if let Some(c) = s.get(0..1) {
-                s.replace_range(0..1, &c.to_uppercase());
-            }
-            s
-        }
+        other => capitalized(other.replace('_', " ")),
     }
+}
+
+/// `text` with its first letter upper-case.
+fn capitalized(mut text: String) -> String {
+    if let Some(c) = text.get(0..1) {
+        text.replace_range(0..1, &c.to_uppercase());
+    }
+    text
 }
 
 /// `name` as an OpenSCAD identifier (other characters become `_`).
@@ -231,6 +238,81 @@ pub fn name_free_variables(
             VariableName { name, description }
         })
         .collect()
+}
+
+/// Every identifier the program uses (variables, parameters, functions, modules): the
+/// names a new variable must not take.
+pub fn identifiers(loaded: &Loaded) -> HashSet<String> {
+    struct Names(HashSet<String>);
+    impl<'a> Visitor<'a> for Names {
+        fn enter(&mut self, s: &'a Stmt) {
+            match &s.kind {
+                StmtKind::Assign { name, .. } => {
+                    self.0.insert(name.name.clone());
+                }
+                StmtKind::ModuleDef { name, params, .. }
+                | StmtKind::FunctionDef { name, params, .. } => {
+                    self.0.insert(name.name.clone());
+                    self.0.extend(params.iter().map(|p| p.name.name.clone()));
+                }
+                StmtKind::Instance(i) => {
+                    if let InstanceKind::Call { name, .. } = &i.kind {
+                        self.0.insert(name.name.clone());
+                    }
+                }
+                _ => {}
+            }
+        }
+        fn expr(&mut self, e: &'a Expr) {
+            if let ExprKind::Ident(n) = &e.kind {
+                self.0.insert(n.clone());
+            }
+        }
+    }
+    let mut n = Names(HashSet::new());
+    for p in loaded.programs.values() {
+        visit_stmts(&p.stmts, &mut n);
+    }
+    n.0
+}
+
+/// `a`, `a and b`, `a, b and c`.
+pub fn english_list(items: &[String]) -> String {
+    match items {
+        [] => String::new(),
+        [one] => one.clone(),
+        [rest @ .., last] => format!("{} and {last}", rest.join(", ")),
+    }
+}
+
+/// A part switch's name (`show_` and the words its parts' names share, numbered past
+/// `taken`) and its description (the parts' names in words).
+pub fn toggle_name(model: &Model, t: &Toggle, taken: &HashSet<String>) -> (String, String) {
+    let names: Vec<&str> = t
+        .parts
+        .iter()
+        .map(|&p| model.parts[p].name.as_str())
+        .collect();
+    let first = names.first().copied().unwrap_or_default();
+    let common: Vec<String> = first
+        .split('_')
+        .filter(|w| names.iter().all(|n| n.split('_').any(|x| x == *w)))
+        .filter(|w| !w.chars().all(|c| c.is_ascii_digit()))
+        .map(str::to_string)
+        .collect();
+    let base = if common.is_empty() {
+        first.to_string()
+    } else {
+        common.join("_")
+    };
+    let mut name = format!("show_{base}");
+    let mut k = 2;
+    while taken.contains(&name) {
+        name = format!("show_{base}_{k}");
+        k += 1;
+    }
+    let words: Vec<String> = names.iter().map(|n| n.replace('_', " ")).collect();
+    (name, capitalized(english_list(&words)))
 }
 
 #[cfg(test)]

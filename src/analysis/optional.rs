@@ -7,10 +7,11 @@
 //! exactly the same set of variations form one toggle (a Customizer checkbox, on by default).
 
 use super::discover::Similarity;
+use crate::ir::Model;
 
 /// Volume changed by removing a part, as a fraction of its own volume in the input, below
 /// which it is optional.
-pub const OPTIONAL_THRESHOLD: f64 = 1e-3;
+pub const OPTIONAL_THRESHOLD: f64 = crate::tolerance::OPTIONAL_PART_LOSS;
 
 /// A group of parts switched together, and the variations that do without them.
 #[derive(Debug, Clone, PartialEq)]
@@ -31,6 +32,32 @@ pub fn optional_parts<S: Similarity>(
             let whole = sim.reference(v, &[]);
             (0..parts)
                 .filter(|&p| sim.removal_loss(&whole, p) < OPTIONAL_THRESHOLD)
+                .collect()
+        })
+        .collect()
+}
+
+/// The variations' slot values with every slot that shapes only parts a variation does
+/// without set back to the input's: such a part keeps the model's own shape there, so
+/// presets and blends never shrink it to nothing (its switch hides it instead).
+pub fn held_where_skipped(
+    model: &Model,
+    variations: &[Vec<f64>],
+    optional: &[Vec<usize>],
+) -> Vec<Vec<f64>> {
+    let x0 = model.slot_values();
+    let owners = model.parts_by_slot();
+    variations
+        .iter()
+        .zip(optional)
+        .map(|(v, skip)| {
+            v.iter()
+                .enumerate()
+                .map(|(s, &val)| {
+                    let only_skipped =
+                        !owners[s].is_empty() && owners[s].iter().all(|p| skip.contains(p));
+                    if only_skipped { x0[s] } else { val }
+                })
                 .collect()
         })
         .collect()

@@ -21,6 +21,7 @@ use super::slotblocks::SlotBlocks;
 use crate::analysis::linalg;
 use crate::ir::feature::world_intervals;
 use crate::ir::{Affine, Model, Primitive, SlotId};
+use crate::tolerance::{CHOLESKY_RETRY_RIDGE, PROJECTION_RIDGE, SCALE_FLOOR};
 use nalgebra::{DMatrix, DVector};
 use std::collections::HashMap;
 
@@ -127,7 +128,7 @@ impl Faces {
         let scale = diagonal.iter().fold(0.0f64, |m, &v| m.max(v)).max(1.0);
         Metric {
             weights,
-            ridge: 1e-9 * scale,
+            ridge: PROJECTION_RIDGE * scale,
         }
     }
 
@@ -325,21 +326,20 @@ fn positive_definite_factor(m: DMatrix<f64>) -> nalgebra::Cholesky<f64, nalgebra
     let scale = (0..r)
         .map(|i| m[(i, i)].abs())
         .fold(0.0f64, f64::max)
-        .max(1e-300);
+        .max(SCALE_FLOOR);
     let mut ridge = 0.0;
     loop {
         if ridge > 1e6 * scale || m.iter().any(|v| !v.is_finite()) {
             // Nothing sensible to factor: an identity metric on the null space.
-            return DMatrix::identity(r, r)
-                .cholesky()
-                .expect("the identity is positive definite");
+            // The identity is its own Cholesky factor (I = I·Iᵀ).
+            return nalgebra::Cholesky::pack_dirty(DMatrix::identity(r, r));
         }
         let shifted = &m + DMatrix::identity(r, r) * ridge;
         if let Some(c) = shifted.cholesky() {
             return c;
         }
         ridge = if ridge == 0.0 {
-            1e-12 * scale
+            CHOLESKY_RETRY_RIDGE * scale
         } else {
             ridge * 100.0
         };

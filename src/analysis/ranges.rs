@@ -10,6 +10,7 @@
 use super::reparam::Solution;
 use crate::ir::feature::world_intervals;
 use crate::ir::{Affine, Model, Primitive};
+use crate::tolerance::{MIN_SLIDER_STEP, RELATIVE_ROUNDOFF};
 use serde::Serialize;
 
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -62,7 +63,7 @@ fn in_free(form: &Affine, sol: &Solution) -> (f64, Vec<f64>) {
 
 /// A step of about `span / 100` among 1, 2, 5 × 10^k that divides `value` if possible.
 pub fn nice_step(span: f64, value: f64) -> f64 {
-    let target = (span / 100.0).max(1e-6);
+    let target = (span / 100.0).max(MIN_SLIDER_STEP);
     let mut step = 10f64.powf(target.log10().floor());
     for m in [5.0, 2.0] {
         if step * m <= target {
@@ -70,7 +71,7 @@ pub fn nice_step(span: f64, value: f64) -> f64 {
             break;
         }
     }
-    let divides = |s: f64| ((value / s) - (value / s).round()).abs() < 1e-9;
+    let divides = |s: f64| ((value / s) - (value / s).round()).abs() < RELATIVE_ROUNDOFF;
     let mut s = step;
     for _ in 0..12 {
         if divides(s) {

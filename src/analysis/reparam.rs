@@ -6,10 +6,11 @@
 //! the free ones. The coefficients are small rationals (±1, ±½, …); elimination runs in `f64`
 //! with partial pivoting and the results are read back as exact fractions (`Frac`).
 
+use super::anchors::anchor_rows;
 use super::linalg::rank;
 use super::rowbasis::RowBasis;
-use crate::ir::feature::world_intervals;
 use crate::ir::{Affine, Model, SlotId};
+use crate::tolerance::{COEFFICIENT_ZERO, FRACTION_REMAINDER_ZERO, RELATIVE_ROUNDOFF};
 
 /// A small exact fraction `num / den`, `den > 0`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -19,7 +20,8 @@ pub struct Frac {
 }
 
 impl Frac {
-    /// The fraction with denominator at most 1000 within 1e-9 of `x`, if there is one.
+    /// The fraction with denominator at most 1000 within round-off of `x` (relative), if
+    /// there is one.
     pub fn near(x: f64) -> Option<Frac> {
         if !x.is_finite() || x.abs() > 1e12 {
             return None;
@@ -33,12 +35,12 @@ impl Frac {
             if k2 > 1000 {
                 break;
             }
-            if ((h2 as f64) / (k2 as f64) - x).abs() <= 1e-9 * x.abs().max(1.0) {
+            if ((h2 as f64) / (k2 as f64) - x).abs() <= RELATIVE_ROUNDOFF * x.abs().max(1.0) {
                 return Some(Frac { num: h2, den: k2 });
             }
             (h0, h1, k0, k1) = (h1, h2, k1, k2);
             let f = v - a;
-            if f.abs() < 1e-15 {
+            if f.abs() < FRACTION_REMAINDER_ZERO {
                 break;
             }
             v = 1.0 / f;
@@ -85,62 +87,14 @@ impl Solution {
     }
 }
 
-/// Rows that pin the model in place: its centre in x and y and its floor in z, at the
-/// input. The faces used are the input's extremes.
-pub fn anchor_rows(model: &Model) -> Vec<Affine> {
-    anchor_rows_at(model, &model.slot_values())
-}
-
-/// The anchor rows with their constants taken at `at` instead of the input: the same
-/// faces, held where `at` has them (a variation keeps its own place while projected).
-pub fn anchor_rows_at(model: &Model, at: &[f64]) -> Vec<Affine> {
-    let values = model.slot_values();
-    let mut lo: [Option<(f64, Affine)>; 3] = Default::default();
-    let mut hi: [Option<(f64, Affine)>; 3] = Default::default();
-    for p in model.parts.iter().filter(|p| p.misaligned.is_none()) {
-        let Some(iv) = world_intervals(p) else {
-            continue;
-        };
-        for a in 0..3 {
-            if let (Some(l), Some(h)) = (iv[a].0.affine(), iv[a].1.affine()) {
-                let (lv, hv) = (l.eval(&values), h.eval(&values));
-                if lo[a].as_ref().is_none_or(|(v, _)| lv < *v) {
-                    lo[a] = Some((lv, l.clone()));
-                }
-                if hi[a].as_ref().is_none_or(|(v, _)| hv > *v) {
-                    hi[a] = Some((hv, h.clone()));
-                }
-            }
-        }
-    }
-    let mut rows = Vec::new();
-    for a in 0..2 {
-        if let (Some((_, l)), Some((_, h))) = (&lo[a], &hi[a]) {
-            let centre = l.add(h).scale(0.5);
-            rows.push(centre.sub(&Affine::constant(centre.eval(at))));
-        }
-    }
-    if let Some((_, l)) = &lo[2] {
-        rows.push(l.sub(&Affine::constant(l.eval(at))));
-    }
-    rows
-}
-
 /// Column order: least wanted as a free variable first.
 fn column_order(model: &Model) -> Vec<usize> {
     let mut volume = vec![0.0f64; model.slots.len()];
     for p in &model.parts {
         let (lo, hi) = p.world_bounds();
         let v = (0..3).map(|a| (hi[a] - lo[a]).abs()).product::<f64>();
-        let nums = p.world.m.iter().flatten().chain(match &p.primitive {
-            crate::ir::Primitive::Cube { size, .. } => size.iter().collect::<Vec<_>>(),
-            crate::ir::Primitive::Cylinder { h, r1, r2, .. } => vec![h, r1, r2],
-            crate::ir::Primitive::Sphere { r } => vec![r],
-        });
-        for n in nums {
-            for s in n.deps() {
-                volume[s as usize] = volume[s as usize].max(v);
-            }
+        for s in p.slot_deps() {
+            volume[s as usize] = volume[s as usize].max(v);
         }
     }
     let mut order: Vec<usize> = (0..model.slots.len()).collect();
@@ -218,7 +172,7 @@ fn gauss_jordan(system: &[Affine], order: &[usize]) -> (Vec<SparseRow>, Vec<usiz
         else {
             continue;
         };
-        if rows[p].terms[&col].abs() < 1e-9 {
+        if rows[p].terms[&col].abs() < RELATIVE_ROUNDOFF {
             continue;
         }
         let pv = rows[p].terms[&col];
@@ -247,12 +201,18 @@ fn gauss_jordan(system: &[Affine], order: &[usize]) -> (Vec<SparseRow>, Vec<usiz
         pivot_rows.push(p);
         pivots.push(col);
     }
-    let mut taken: Vec<Option<SparseRow>> = rows.into_iter().map(Some).collect();
-    let ordered = pivot_rows
-        .iter()
-        .map(|&p| taken[p].take().expect("each row pivots once"))
+    // The pivot rows in the order they pivoted (each row pivots at most once).
+    let mut rank_of: Vec<Option<usize>> = vec![None; m];
+    for (k, &p) in pivot_rows.iter().enumerate() {
+        rank_of[p] = Some(k);
+    }
+    let mut ordered: Vec<(usize, SparseRow)> = rows
+        .into_iter()
+        .zip(rank_of)
+        .filter_map(|(r, k)| Some((k?, r)))
         .collect();
-    (ordered, pivots)
+    ordered.sort_unstable_by_key(|&(k, _)| k);
+    (ordered.into_iter().map(|(_, r)| r).collect(), pivots)
 }
 
 /// Solves `rows` (affine, each `= 0`) plus the anchors for the free slots.
@@ -290,10 +250,10 @@ pub fn solve(model: &Model, rows: &[Affine]) -> Solution {
         };
         d
     ];
-    for &f in &free {
+    for (k, &f) in free.iter().enumerate() {
         exprs[f as usize] = Expression {
             constant: 0.0,
-            terms: vec![(free_index(f as usize).unwrap_or(0), 1.0)],
+            terms: vec![(k, 1.0)],
         };
     }
     for (r, &pc) in pivots.iter().enumerate() {
@@ -301,7 +261,7 @@ pub fn solve(model: &Model, rows: &[Affine]) -> Solution {
         let mut terms: Vec<(usize, f64)> = a[r]
             .terms
             .iter()
-            .filter(|&(&c, v)| c != pc && !is_pivot[c] && v.abs() > 1e-12)
+            .filter(|&(&c, v)| c != pc && !is_pivot[c] && v.abs() > COEFFICIENT_ZERO)
             .filter_map(|(&c, &v)| Some((free_index(order[c])?, snap(-v))))
             .collect();
         terms.sort_by_key(|t| t.0);

@@ -7,6 +7,7 @@
 //! also says where a point satisfying them has its pivot slots ([`RowBasis::pivot_value`]).
 
 use crate::ir::{Affine, SlotId};
+use crate::tolerance::{BASIS_UPDATE_ZERO, RELATIVE_ROUNDOFF};
 use std::collections::HashMap;
 
 /// One stored row: `Σ terms + constant = 0`, with coefficient 1 at its pivot.
@@ -25,9 +26,6 @@ pub struct RowBasis {
     /// reduction can only have changed if it holds one of them.
     touched: Vec<SlotId>,
 }
-
-/// Entries below this (relative to the row's largest) are round-off.
-const RELATIVE_ZERO: f64 = 1e-9;
 
 impl RowBasis {
     pub fn len(&self) -> usize {
@@ -65,7 +63,7 @@ impl RowBasis {
                 c -= a * stored.constant;
             }
         }
-        v.retain(|_, a| a.abs() > RELATIVE_ZERO * scale);
+        v.retain(|_, a| a.abs() > RELATIVE_ROUNDOFF * scale);
         (v, c)
     }
 
@@ -121,7 +119,7 @@ impl RowBasis {
                 *m.entry(s).or_insert(0.0) -= f * a;
             }
             m.remove(&pivot);
-            m.retain(|_, a| a.abs() > RELATIVE_ZERO * scale * 1e-3);
+            m.retain(|_, a| a.abs() > RELATIVE_ROUNDOFF * scale * BASIS_UPDATE_ZERO);
             let mut r: Vec<(SlotId, f64)> = m.into_iter().collect();
             r.sort_by_key(|&(s, _)| s);
             stored.terms = r;

@@ -8,6 +8,7 @@
 //! prefixed with `if (show_…)`. Order, modules and comments survive.
 
 use super::rewrite::round_for_source;
+use crate::analysis::optional::Toggle;
 use crate::analysis::ranges::Range;
 use crate::front::eval::format_number;
 use crate::span::Span;
@@ -35,6 +36,8 @@ pub struct Switch {
     pub name: String,
     pub description: String,
     pub statements: Vec<Span>,
+    /// The parts it switches and the variations that do without them (for the presets).
+    pub toggle: Toggle,
 }
 
 /// Everything the emitter writes, decided by the pipeline.

@@ -223,6 +223,11 @@ fn vec3(v: [f64; 3]) -> String {
 }
 
 impl Inspection {
+    /// The machine-readable form: pretty JSON ending in a newline.
+    pub fn to_json(&self) -> serde_json::Result<String> {
+        serde_json::to_string_pretty(self).map(|s| s + "\n")
+    }
+
     /// The human-readable form: a summary line, then one table per section.
     pub fn to_text(&self) -> String {
         let mut out = String::new();

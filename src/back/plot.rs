@@ -3,6 +3,7 @@
 //! Plain pixels, no plotting dependency: a white canvas, axes, the curve in blue, a red
 //! vertical line at the cutoff step. Good enough to see where the jump is.
 
+use crate::tolerance::MIN_PLOT_SCALE;
 use std::io::Write;
 
 const W: usize = 640;
@@ -66,7 +67,11 @@ pub fn distortion_png(curve: &[f64], keep: usize) -> Vec<u8> {
     c.line((x0, y0), (x1, y0), grey, 1);
     c.line((x0, y0), (x0, y1), grey, 1);
     let n = curve.len().max(2) - 1;
-    let top = curve.iter().copied().fold(0.0, f64::max).max(1e-6);
+    let top = curve
+        .iter()
+        .copied()
+        .fold(0.0, f64::max)
+        .max(MIN_PLOT_SCALE);
     let at = |i: usize, v: f64| {
         let x = x0 + ((x1 - x0) as f64 * i as f64 / n as f64).round() as i64;
         let y = y0 - ((y0 - y1) as f64 * (v / top).clamp(0.0, 1.0)).round() as i64;

@@ -1,10 +1,11 @@
 //! The main command: `reparamc model.scad -o model_param.scad --vary a.scad …`.
 //!
-//! Loads the model and its variant files, runs the library's main job, and writes the
-//! outputs atomically (a temporary file renamed into place), never over the input.
+//! Flags in → [`CompileOptions`] → the library's `compile` → the outputs written atomically
+//! (a temporary file renamed into place, never over the input), the diff printed when
+//! asked, diagnostics and a one-line summary on standard error.
 
-use super::{EXIT_IO_ERROR, EXIT_MODEL_ERROR, report};
-use reparamc::compile::{Options, reparameterize};
+use super::{EXIT_IO_ERROR, EXIT_MODEL_ERROR, print_stdout, report};
+use reparamc::command::compile::{CompileOptions, Options, compile};
 use reparamc::front::source::SourceMap;
 use reparamc::output::{same_file, write_atomic};
 use std::path::{Path, PathBuf};
@@ -31,11 +32,19 @@ pub struct Args {
     /// instead of the structural prior.
     #[arg(long)]
     pub all_constraints: bool,
+    /// Also print what changed, as a unified diff from the model to the output.
+    #[arg(long)]
+    pub diff: bool,
 }
 
 fn io_error(what: &Path, e: std::io::Error) -> ExitCode {
     eprintln!("error: cannot write `{}`: {e}", what.display());
     ExitCode::from(EXIT_IO_ERROR)
+}
+
+/// Writes `bytes` to `path`, or says why it could not.
+fn write(path: &Path, bytes: &[u8]) -> Result<(), ExitCode> {
+    write_atomic(path, bytes).map_err(|e| io_error(path, e))
 }
 
 pub fn run(args: Args) -> ExitCode {
@@ -59,93 +68,73 @@ pub fn run(args: Args) -> ExitCode {
         );
         return ExitCode::from(2);
     }
+    if to_stdout && args.diff {
+        eprintln!(
+            "error: --diff prints to standard output, where `-o -` writes the model; write the model to a file with -o"
+        );
+        return ExitCode::from(2);
+    }
+    let options = CompileOptions {
+        model: model_path,
+        variations: args.vary.clone(),
+        options: Options {
+            all_constraints: args.all_constraints,
+            presets_name: (!to_stdout)
+                .then(|| {
+                    output
+                        .with_extension("json")
+                        .file_name()
+                        .map(|n| n.to_string_lossy().into_owned())
+                })
+                .flatten(),
+        },
+        plot: args.plot.is_some(),
+        diff_to: args.diff.then(|| output.display().to_string()),
+    };
     let mut sources = SourceMap::new();
-    let result =
-        reparamc::with_large_stack(|| -> Result<_, Box<reparamc::front::diag::Diagnostic>> {
-            let loaded = reparamc::front::load::load_file(&mut sources, &model_path)?;
-            let evaluated = reparamc::front::eval::evaluate(&sources, &loaded)?;
-            let mut variations = Vec::new();
-            for v in &args.vary {
-                variations.push(reparamc::variation::load_variation(
-                    &mut sources,
-                    loaded.main,
-                    &evaluated.model,
-                    v,
-                )?);
-            }
-            let options = Options {
-                all_constraints: args.all_constraints,
-                presets_name: (!to_stdout)
-                    .then(|| {
-                        output
-                            .with_extension("json")
-                            .file_name()
-                            .map(|n| n.to_string_lossy().into_owned())
-                    })
-                    .flatten(),
-            };
-            let compiled =
-                reparameterize(&sources, &loaded, &evaluated.model, &variations, &options);
-            Ok((evaluated.warnings, compiled))
-        });
-    let (warnings, compiled) = match result {
-        Ok(r) => r,
+    let made = match compile(&options, &mut sources) {
+        Ok(made) => made,
         Err(d) => {
             report(&sources, &[*d]);
             return ExitCode::from(EXIT_MODEL_ERROR);
         }
     };
-    report(&sources, &warnings);
+    report(&sources, &made.warnings);
+    let compiled = &made.compiled;
     if to_stdout {
-        if super::print_stdout(&compiled.scad) != ExitCode::SUCCESS {
+        if print_stdout(&compiled.scad) != ExitCode::SUCCESS {
             return ExitCode::from(EXIT_IO_ERROR);
         }
     } else {
-        if let Err(e) = write_atomic(&output, compiled.scad.as_bytes()) {
-            return io_error(&output, e);
+        if let Err(code) = write(&output, compiled.scad.as_bytes()) {
+            return code;
         }
-        if let Some(p) = &compiled.presets {
-            let json = output.with_extension("json");
-            if let Err(e) = write_atomic(&json, p.as_bytes()) {
-                return io_error(&json, e);
-            }
-        }
-    }
-    if let Some(r) = &args.report {
-        let text = serde_json::to_string_pretty(&compiled.report).unwrap_or_default() + "\n";
-        if let Err(e) = write_atomic(r, text.as_bytes()) {
-            return io_error(r, e);
+        if let Some(p) = &compiled.presets
+            && let Err(code) = write(&output.with_extension("json"), p.as_bytes())
+        {
+            return code;
         }
     }
-    if let Some(p) = &args.plot {
-        let keep = compiled
-            .report
-            .cutoff
-            .as_ref()
-            .map_or(compiled.report.kept_count, |c| c.keep);
-        let png = reparamc::back::plot::distortion_png(&compiled.report.distortion_curve, keep);
-        if let Err(e) = write_atomic(p, &png) {
-            return io_error(p, e);
-        }
+    if let Some(r) = &args.report
+        && let Err(code) = write(r, compiled.report.to_json().as_bytes())
+    {
+        return code;
     }
-    let r = &compiled.report;
-    eprintln!(
-        "{}: {} sliders drive {} numbers, keeping {} of {} relations ({}){}",
-        if to_stdout {
-            "stdout".to_string()
-        } else {
-            output.display().to_string()
-        },
-        r.dimension,
-        r.parameter_count,
-        r.kept_count,
-        r.base_constraint_count,
-        r.method,
-        if r.toggles.is_empty() {
-            String::new()
-        } else {
-            format!(", {} part switches", r.toggles.len())
-        }
-    );
+    if let (Some(p), Some(png)) = (&args.plot, &made.plot)
+        && let Err(code) = write(p, png)
+    {
+        return code;
+    }
+    if let Some(diff) = &made.diff
+        && print_stdout(diff) != ExitCode::SUCCESS
+    {
+        return ExitCode::from(EXIT_IO_ERROR);
+    }
+    let target = if to_stdout {
+        "stdout".to_string()
+    } else {
+        output.display().to_string()
+    };
+    eprintln!("{}", compiled.report.summary_line(&target));
     ExitCode::SUCCESS
 }

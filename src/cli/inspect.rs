@@ -1,6 +1,11 @@
 //! `reparamc inspect`: parameters, parts and relations of a model.
+//!
+//! Flags in → [`InspectOptions`] → the library's `inspect` → tables or JSON on standard
+//! output, diagnostics on standard error.
 
-use super::{EXIT_IO_ERROR, EXIT_MODEL_ERROR, load, print_stdout};
+use super::{EXIT_IO_ERROR, EXIT_MODEL_ERROR, print_stdout, report};
+use reparamc::command::inspect::{InspectOptions, inspect};
+use reparamc::front::source::SourceMap;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -14,16 +19,21 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> ExitCode {
-    let Some((sources, evaluated)) = load(&args.model) else {
-        return ExitCode::from(EXIT_MODEL_ERROR);
+    let mut sources = SourceMap::new();
+    let options = InspectOptions { model: args.model };
+    let found = match inspect(&options, &mut sources) {
+        Ok(found) => found,
+        Err(d) => {
+            report(&sources, &[*d]);
+            return ExitCode::from(EXIT_MODEL_ERROR);
+        }
     };
-    let candidates = reparamc::analysis::find_candidates(&evaluated.model);
-    let inspection = reparamc::back::inspect::inspect(&sources, &evaluated.model, &candidates);
+    report(&sources, &found.warnings);
     if !args.json {
-        return print_stdout(&inspection.to_text());
+        return print_stdout(&found.inspection.to_text());
     }
-    match serde_json::to_string_pretty(&inspection) {
-        Ok(s) => print_stdout(&(s + "\n")),
+    match found.inspection.to_json() {
+        Ok(s) => print_stdout(&s),
         Err(e) => {
             eprintln!("error: cannot write JSON: {e}");
             ExitCode::from(EXIT_IO_ERROR)

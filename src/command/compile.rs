@@ -1,1 +1,371 @@
-//! The `compile` command's entry point (being moved here; see ARCHITECTURE.md).
+//! The main job: a model and its variations in, a re-parameterized model out.
+//!
+//! [`compile`] is the `reparamc` command's entry point (files in, texts and a report out);
+//! [`reparameterize`] is the pipeline on a model already loaded, stage by stage: candidates
+//! → optional parts → discovery and cutoff (or, without variations, the structural prior)
+//! → Gauss–Jordan solve with anchors → projected variations → names, ranges and the emitted
+//! file with its presets. Each stage lives where its kind does (`analysis`, `back`); this
+//! file only composes them, and every decision is recorded in the [`Report`].
+
+use crate::analysis::anchors::project_variations;
+use crate::analysis::candidates::{Candidate, Candidates};
+use crate::analysis::cutoff::{Cutoff, cutoff};
+use crate::analysis::discover::{Sample, Similarity, discover};
+use crate::analysis::find_candidates_for;
+use crate::analysis::noise::{NoiseGate, noise_gate};
+use crate::analysis::optional::{held_where_skipped, optional_parts, toggles};
+use crate::analysis::prior::structural_prior;
+use crate::analysis::project::Faces;
+use crate::analysis::ranges::ranges;
+use crate::analysis::reparam::{Solution, solve};
+use crate::analysis::similarity::VolumeSimilarity;
+use crate::analysis::tiers::{TIER_NAMES, discovery_tiers, plausible_steps};
+use crate::back::diff::unified_diff;
+use crate::back::emit::{EmitPlan, emit};
+use crate::back::plan::{PlanInputs, plan};
+use crate::back::plot::distortion_png;
+use crate::back::presets::presets_json;
+use crate::back::report::{ChosenRelation, FreeVariableReport, Report, VariationReport};
+use crate::front::diag::{DResult, Diagnostic};
+use crate::front::load::{Loaded, load_file};
+use crate::front::source::SourceMap;
+use crate::front::{eval::evaluate, with_large_stack};
+use crate::ir::{Affine, Model};
+use crate::tolerance::{MIN_DISPLAY_SIZE, Tolerance};
+use crate::variation::{Variation, load_variation};
+use std::path::PathBuf;
+
+/// Distortion the variations' own noise explains; a curve below it keeps every constraint.
+pub const DISTORTION_TOLERANCE: f64 = 0.01;
+
+/// How the pipeline chooses and presents (what [`reparameterize`] can be told).
+#[derive(Debug, Clone, Default)]
+pub struct Options {
+    /// Without variations, keep every base constraint (the paper's symbolic baseline).
+    pub all_constraints: bool,
+    /// The file name the parameter sets will have (for the comment that points to them).
+    pub presets_name: Option<String>,
+}
+
+/// What the `compile` command is asked: the files, and what to make besides the model.
+#[derive(Debug, Clone, Default)]
+pub struct CompileOptions {
+    /// The OpenSCAD model to re-parameterize.
+    pub model: PathBuf,
+    /// Its variant files: the same program with other numbers.
+    pub variations: Vec<PathBuf>,
+    pub options: Options,
+    /// Draw the distortion curve with the cutoff marked (PNG bytes in [`CompileOutput`]).
+    pub plot: bool,
+    /// Make a unified diff from the model to the output, which will be written as this
+    /// name (the diff's `+++` header; the `---` header is the model's path).
+    pub diff_to: Option<String>,
+}
+
+/// The results of the main job.
+#[derive(Debug, Clone)]
+pub struct Compiled {
+    pub scad: String,
+    /// OpenSCAD parameter sets (`<name>.json`), when there are variations.
+    pub presets: Option<String>,
+    pub report: Report,
+    /// Every candidate of the model, and the kept ones, for tests and tools.
+    pub candidates: Candidates,
+    pub kept: Vec<Candidate>,
+    pub solution: Solution,
+    /// Slot values of each variation projected onto the kept constraints and anchors.
+    pub projected: Vec<Vec<f64>>,
+}
+
+/// What the `compile` command makes: the job's results, the pictures and texts asked for,
+/// and the warnings loading gave.
+#[derive(Debug)]
+pub struct CompileOutput {
+    pub compiled: Compiled,
+    /// The distortion plot (PNG), when asked.
+    pub plot: Option<Vec<u8>>,
+    /// The unified diff from the model to the output, when asked.
+    pub diff: Option<String>,
+    pub warnings: Vec<Diagnostic>,
+}
+
+/// The `compile` command: loads the model and its variations into `sources`, runs the main
+/// job and makes what `options` asks for. Prints nothing and writes no file; the error is
+/// the diagnostic that stopped it.
+pub fn compile(options: &CompileOptions, sources: &mut SourceMap) -> DResult<CompileOutput> {
+    with_large_stack(|| {
+        let loaded = load_file(sources, &options.model)?;
+        let evaluated = evaluate(sources, &loaded)?;
+        let mut variations = Vec::new();
+        for v in &options.variations {
+            variations.push(load_variation(sources, loaded.main, &evaluated.model, v)?);
+        }
+        let compiled = reparameterize(
+            sources,
+            &loaded,
+            &evaluated.model,
+            &variations,
+            &options.options,
+        );
+        let report = &compiled.report;
+        let plot = options
+            .plot
+            .then(|| distortion_png(&report.distortion_curve, report.keep_step()));
+        let diff = options.diff_to.as_ref().map(|to| {
+            let from = options.model.display().to_string();
+            unified_diff(sources.text(loaded.main), &compiled.scad, &from, to)
+        });
+        Ok(CompileOutput {
+            compiled,
+            plot,
+            diff,
+            warnings: evaluated.warnings,
+        })
+    })
+}
+
+/// Runs the main job on a loaded model.
+pub fn reparameterize(
+    sources: &SourceMap,
+    loaded: &Loaded,
+    model: &Model,
+    variations: &[Variation],
+    options: &Options,
+) -> Compiled {
+    // Candidates: every relation that holds on the input (and on the variations).
+    let raw: Vec<Vec<f64>> = variations.iter().map(|v| v.values.clone()).collect();
+    let candidates = find_candidates_for(model, &raw);
+    // Optional parts: what each variation does without, kept at the input's shape.
+    let sim = VolumeSimilarity::new(model);
+    let optional = optional_parts(model.parts.len(), &raw, &sim);
+    let values = held_where_skipped(model, &raw, &optional);
+    // Discovery (or the prior): which relations to keep.
+    let faces = Faces::of(model);
+    let choice = if variations.is_empty() {
+        by_prior(model, &candidates, options.all_constraints)
+    } else {
+        by_discovery(model, &candidates, &faces, &sim, &values, &optional)
+    };
+    // Reparameterization: the kept rows solved with anchors; the variations projected.
+    let kept: Vec<Candidate> = choice
+        .kept
+        .iter()
+        .map(|&i| candidates.list[i].clone())
+        .collect();
+    let rows: Vec<Affine> = kept.iter().flat_map(|c| c.rows.iter().cloned()).collect();
+    let solution = solve(model, &rows);
+    let projected = project_variations(model, &faces, &rows, &values, &optional);
+    // Emit: sliders, blends and switches, the file and its presets.
+    let (input_free, variation_free) = free_values(model, &solution, &projected);
+    let slider_ranges = ranges(model, &solution, &input_free, &variation_free);
+    let plan = plan(&PlanInputs {
+        sources,
+        loaded,
+        model,
+        solution: &solution,
+        variations,
+        input_free: &input_free,
+        variation_free: &variation_free,
+        ranges: &slider_ranges,
+        toggles: &toggles(model.parts.len(), &optional),
+        kept: kept.len(),
+        presets_name: options.presets_name.as_deref(),
+    });
+    let scad = emit(sources.text(loaded.main), &plan);
+    let presets = (!variations.is_empty()).then(|| presets_json(&plan));
+    let outcome = Outcome {
+        sources,
+        loaded,
+        model,
+        variations,
+        candidates: &candidates,
+        sim: &sim,
+        optional: &optional,
+        solution: &solution,
+        projected: &projected,
+        plan: &plan,
+        kept: kept.len(),
+    };
+    let report = report(&outcome, choice);
+    Compiled {
+        scad,
+        presets,
+        report,
+        candidates,
+        kept,
+        solution,
+        projected,
+    }
+}
+
+/// Which candidates are kept, and how they were chosen (for the report).
+struct Choice {
+    /// Indices into the candidates, in the order chosen.
+    kept: Vec<usize>,
+    method: String,
+    chosen: Vec<ChosenRelation>,
+    cutoff: Option<Cutoff>,
+    curve: Vec<f64>,
+    noise: Option<NoiseGate>,
+}
+
+/// Without variations: the structural prior, or every base constraint.
+fn by_prior(model: &Model, candidates: &Candidates, all_constraints: bool) -> Choice {
+    let (kept, method) = if all_constraints {
+        (
+            (0..candidates.list.len()).collect::<Vec<usize>>(),
+            "all base constraints (the paper's symbolic baseline)",
+        )
+    } else {
+        (
+            structural_prior(model, candidates),
+            "structural prior: contacts, coaxiality and equal sizes of repeated parts",
+        )
+    };
+    let chosen = kept
+        .iter()
+        .map(|&i| ChosenRelation {
+            relation: candidates.describe(&candidates.list[i]),
+            tier: None,
+            residual: None,
+            worst_loss: None,
+        })
+        .collect();
+    Choice {
+        kept,
+        method: method.to_string(),
+        chosen,
+        cutoff: None,
+        curve: Vec::new(),
+        noise: None,
+    }
+}
+
+/// With variations: greedy discovery in tiers behind the noise gate, cut where the
+/// distortion curve jumps.
+fn by_discovery(
+    model: &Model,
+    candidates: &Candidates,
+    faces: &Faces,
+    sim: &VolumeSimilarity,
+    values: &[Vec<f64>],
+    optional: &[Vec<usize>],
+) -> Choice {
+    let samples: Vec<Sample> = values
+        .iter()
+        .zip(optional)
+        .map(|(v, o)| Sample {
+            values: v.clone(),
+            optional: o.clone(),
+        })
+        .collect();
+    let tolerance = Tolerance::for_size(model.size());
+    let gate = noise_gate(candidates, &samples, tolerance);
+    let tiers = discovery_tiers(model, candidates, &gate, tolerance);
+    let disc = discover(faces, candidates, &samples, model.slots.len(), sim, &tiers);
+    let plausible = plausible_steps(&disc.tiers);
+    let c = cutoff(&disc.curve, DISTORTION_TOLERANCE, plausible);
+    let chosen = disc
+        .order
+        .iter()
+        .zip(disc.tiers.iter().zip(&disc.worst))
+        .map(|(&i, (&t, &w))| ChosenRelation {
+            relation: candidates.describe(&candidates.list[i]),
+            tier: Some(TIER_NAMES[t as usize]),
+            residual: Some(gate.residual[i]),
+            worst_loss: Some(w),
+        })
+        .collect();
+    Choice {
+        kept: disc.order[..c.keep].to_vec(),
+        method: "greedy discovery from variations".to_string(),
+        chosen,
+        cutoff: Some(c),
+        curve: disc.curve,
+        noise: Some(gate),
+    }
+}
+
+/// The free variables' values at the input and in each projected variation. Projections
+/// are exact to round-off; they are shown to a millionth of the model's size.
+fn free_values(
+    model: &Model,
+    solution: &Solution,
+    projected: &[Vec<f64>],
+) -> (Vec<f64>, Vec<Vec<f64>>) {
+    let free_at =
+        |x: &[f64]| -> Vec<f64> { solution.free.iter().map(|&f| x[f as usize]).collect() };
+    let input = free_at(&model.slot_values());
+    let quantum = 10f64.powf((model.size().max(MIN_DISPLAY_SIZE)).log10().floor() - 6.0);
+    let tidy = |v: f64| (v / quantum).round() * quantum;
+    let variations = projected
+        .iter()
+        .map(|p| free_at(p).into_iter().map(tidy).collect())
+        .collect();
+    (input, variations)
+}
+
+/// What the pipeline decided, for the report.
+struct Outcome<'a> {
+    sources: &'a SourceMap,
+    loaded: &'a Loaded,
+    model: &'a Model,
+    variations: &'a [Variation],
+    candidates: &'a Candidates,
+    sim: &'a VolumeSimilarity<'a>,
+    optional: &'a [Vec<usize>],
+    solution: &'a Solution,
+    projected: &'a [Vec<f64>],
+    plan: &'a EmitPlan,
+    kept: usize,
+}
+
+/// The report of the job: its choice and what came of it.
+fn report(o: &Outcome, choice: Choice) -> Report {
+    let model = o.model;
+    let free_variables = o
+        .plan
+        .sliders
+        .iter()
+        .zip(&o.solution.free)
+        .map(|(s, &slot)| FreeVariableReport {
+            name: s.name.clone(),
+            slot: model.slots[slot as usize].name.clone(),
+            description: s.description.clone(),
+            value: s.value,
+            range: s.range,
+        })
+        .collect();
+    let variations = o
+        .variations
+        .iter()
+        .zip(o.projected)
+        .zip(o.optional)
+        .map(|((v, p), skip)| VariationReport {
+            name: v.name.clone(),
+            optional_parts: skip.iter().map(|&i| model.parts[i].name.clone()).collect(),
+            projection_iou: o.sim.similarity(p, &v.values, skip),
+        })
+        .collect();
+    let part_names = |parts: &[usize]| parts.iter().map(|&p| model.parts[p].name.clone()).collect();
+    Report {
+        model: o.sources.path(o.loaded.main).display().to_string(),
+        parameter_count: model.slots.len(),
+        base_constraint_count: o.candidates.total(),
+        method: choice.method,
+        chosen: choice.chosen,
+        noise: choice.noise,
+        kept_count: o.kept,
+        cutoff: choice.cutoff,
+        distortion_curve: choice.curve,
+        dimension: o.solution.free.len(),
+        free_variables,
+        variations,
+        toggles: o
+            .plan
+            .switches
+            .iter()
+            .map(|s| part_names(&s.toggle.parts))
+            .collect(),
+    }
+}

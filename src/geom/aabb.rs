@@ -36,13 +36,6 @@ impl Aabb {
         }
     }
 
-    /// The bounds of several parts together.
-    pub fn of_parts<'a>(parts: impl IntoIterator<Item = &'a Part>) -> Self {
-        parts
-            .into_iter()
-            .fold(Aabb::empty(), |acc, p| acc.union(&Aabb::of_part(p)))
-    }
-
     /// True when the box has no interior (a flat box counts as empty: it holds no volume).
     pub fn is_empty(&self) -> bool {
         (0..3).any(|a| !(self.min[a] < self.max[a]))
@@ -81,17 +74,6 @@ impl Aabb {
 
     pub fn contains_point(&self, p: [f64; 3]) -> bool {
         (0..3).all(|a| self.min[a] <= p[a] && p[a] <= self.max[a])
-    }
-
-    /// The box grown by `margin` on every side.
-    pub fn inflate(&self, margin: f64) -> Aabb {
-        if self.is_empty() {
-            return *self;
-        }
-        Aabb {
-            min: self.min.map(|v| v - margin),
-            max: self.max.map(|v| v + margin),
-        }
     }
 
     pub fn volume(&self) -> f64 {

@@ -416,7 +416,7 @@ fn edited_iou_equals_the_whole_models_iou() {
                 None => removed.push(*i),
             }
         }
-        let pruned = crate::compile::csg_without(&tree, &removed).unwrap();
+        let pruned = tree.without(&removed).unwrap();
         let whole = iou((&parts, &tree), (&after, &pruned));
         assert_close(prepared.iou_edited(&edit), whole, 1e-9);
         // Applying the edit updates the volume by the same local integral.

@@ -67,7 +67,7 @@ impl Affine {
     pub fn add_scaled(&self, other: &Affine, k: f64) -> Self {
         let mut terms = Vec::with_capacity(self.terms.len() + other.terms.len());
         let (mut i, mut j) = (0, 0);
-        while i < self.terms.len() || j < other.terms.len() {
+        loop {
             let a = self.terms.get(i);
             let b = other.terms.get(j);
             let (slot, coeff) = match (a, b) {
@@ -88,7 +88,7 @@ impl Affine {
                     j += 1;
                     (sb, k * cb)
                 }
-                (None, None) => unreachable!("loop condition"),
+                (None, None) => break,
             };
             if coeff != 0.0 {
                 terms.push((slot, coeff));

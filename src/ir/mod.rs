@@ -95,6 +95,20 @@ impl Model {
         self.parts.iter().map(|p| p.at(values)).collect()
     }
 
+    /// For each slot (by id), the parts whose geometry depends on it, in part order.
+    pub fn parts_by_slot(&self) -> Vec<Vec<usize>> {
+        let mut out = vec![Vec::new(); self.slots.len()];
+        for (i, p) in self.parts.iter().enumerate() {
+            for s in p.slot_deps() {
+                let owners: &mut Vec<usize> = &mut out[s as usize];
+                if !owners.contains(&i) {
+                    owners.push(i);
+                }
+            }
+        }
+        out
+    }
+
     /// Every feature of every axis-aligned part.
     pub fn features(&self) -> Vec<Feature> {
         self.parts

@@ -6,6 +6,7 @@
 //! affine in slots where it can be. The CSG tree ([`CsgNode`]) keeps unions, differences and
 //! intersections so volumes and images can be exact.
 
+use super::affine::SlotId;
 use super::num::{FreezeSide, Num};
 use crate::span::Span;
 
@@ -202,6 +203,23 @@ impl Part {
         })
     }
 
+    /// Every number that shapes this part: the world matrix's entries, then the
+    /// primitive's size arguments.
+    pub fn numbers(&self) -> impl Iterator<Item = &Num> {
+        let own: Vec<&Num> = match &self.primitive {
+            Primitive::Cube { size, .. } => size.iter().collect(),
+            Primitive::Cylinder { h, r1, r2, .. } => vec![h, r1, r2],
+            Primitive::Sphere { r } => vec![r],
+        };
+        self.world.m.iter().flatten().chain(own)
+    }
+
+    /// The slots this part's geometry depends on, in the order of [`Part::numbers`] (a
+    /// slot appears once for each number that depends on it).
+    pub fn slot_deps(&self) -> impl Iterator<Item = SlotId> + '_ {
+        self.numbers().flat_map(Num::deps)
+    }
+
     /// World-space axis-aligned bounding box at the current values.
     pub fn world_bounds(&self) -> ([f64; 3], [f64; 3]) {
         let (lo, hi) = self.primitive.local_bounds();
@@ -235,6 +253,28 @@ impl CsgNode {
         let mut out = Vec::new();
         self.collect_parts(&mut out);
         out
+    }
+
+    /// This tree without the `skip` parts (`None` when nothing is left). A difference
+    /// whose first child goes is gone; an intersection with a child gone is gone.
+    pub fn without(&self, skip: &[usize]) -> Option<CsgNode> {
+        match self {
+            CsgNode::Part(i) => (!skip.contains(i)).then_some(CsgNode::Part(*i)),
+            CsgNode::Union(c) => {
+                let kept: Vec<CsgNode> = c.iter().filter_map(|n| n.without(skip)).collect();
+                (!kept.is_empty()).then_some(CsgNode::Union(kept))
+            }
+            CsgNode::Difference(c) => {
+                let first = c.first()?.without(skip)?;
+                let mut kept = vec![first];
+                kept.extend(c[1..].iter().filter_map(|n| n.without(skip)));
+                Some(CsgNode::Difference(kept))
+            }
+            CsgNode::Intersection(c) => {
+                let kept: Option<Vec<CsgNode>> = c.iter().map(|n| n.without(skip)).collect();
+                Some(CsgNode::Intersection(kept?))
+            }
+        }
     }
 
     fn collect_parts(&self, out: &mut Vec<usize>) {

@@ -10,12 +10,13 @@
 
 #![allow(dead_code)]
 
+use reparamc::analysis::anchors::anchor_rows_at;
 use reparamc::analysis::discover::Similarity;
 use reparamc::analysis::optional::optional_parts;
 use reparamc::analysis::project::{Faces, project_onto};
-use reparamc::analysis::reparam::anchor_rows_at;
+use reparamc::analysis::similarity::VolumeSimilarity;
 use reparamc::analysis::{find_candidates, linalg};
-use reparamc::compile::{Options, VolumeSimilarity, reparameterize};
+use reparamc::command::compile::{Options, reparameterize};
 use reparamc::front::source::SourceMap;
 use reparamc::ir::Affine;
 use reparamc::ir::feature::world_intervals;
@@ -184,7 +185,7 @@ pub fn evaluate(name: &str, seed: u64) -> Row {
 /// Prints every greedy step: whether the clean variations keep the relation, its residual in
 /// the noisy ones, the step's worst loss and the curve (for studying the cutoff).
 fn trace(
-    compiled: &reparamc::compile::Compiled,
+    compiled: &reparamc::command::compile::Compiled,
     candidates: &reparamc::analysis::candidates::Candidates,
     clean: &[Vec<f64>],
     optional: &[Vec<usize>],

@@ -1,0 +1,94 @@
+//! The main job's report: every decision it made, as data and as JSON (`--report`).
+//!
+//! [`Report`] records what was kept and why (the method, each chosen relation with its
+//! evidence, the noise gate, the cutoff and the distortion curve), the free variables with
+//! their ranges, how well each variation is reproduced and the part switches. It only
+//! presents what the pipeline decided; nothing here computes analysis results.
+
+use crate::analysis::cutoff::Cutoff;
+use crate::analysis::noise::NoiseGate;
+use crate::analysis::ranges::Range;
+use serde::Serialize;
+
+/// One free variable: its slider's name, the slot it is, its value and range.
+#[derive(Debug, Clone, Serialize)]
+pub struct FreeVariableReport {
+    pub name: String,
+    pub slot: String,
+    pub description: String,
+    pub value: f64,
+    pub range: Range,
+}
+
+/// One variation: the parts it does without and how well the sliders reproduce it.
+#[derive(Debug, Clone, Serialize)]
+pub struct VariationReport {
+    pub name: String,
+    pub optional_parts: Vec<String>,
+    /// IoU between the variation and its projection onto the kept constraints.
+    pub projection_iou: f64,
+}
+
+/// One chosen relation and the evidence for it.
+#[derive(Debug, Clone, Serialize)]
+pub struct ChosenRelation {
+    pub relation: String,
+    /// "structural" (the prior's kind), "other", or "beyond noise" (some variation breaks it).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tier: Option<&'static str>,
+    /// Its largest residual over the variations (world units).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub residual: Option<f64>,
+    /// The largest loss of IoU its step caused in one variation.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub worst_loss: Option<f64>,
+}
+
+#[derive(Debug, Clone, Serialize)]
+pub struct Report {
+    pub model: String,
+    pub parameter_count: usize,
+    pub base_constraint_count: usize,
+    /// How the kept constraints were chosen.
+    pub method: String,
+    /// Chosen constraints in order (all greedy steps, with variations).
+    pub chosen: Vec<ChosenRelation>,
+    /// The variations' estimated noise (world units) and the gate it sets.
+    pub noise: Option<NoiseGate>,
+    pub kept_count: usize,
+    pub cutoff: Option<Cutoff>,
+    pub distortion_curve: Vec<f64>,
+    pub dimension: usize,
+    pub free_variables: Vec<FreeVariableReport>,
+    pub variations: Vec<VariationReport>,
+    pub toggles: Vec<Vec<String>>,
+}
+
+impl Report {
+    /// The report as pretty JSON, ending in a newline.
+    pub fn to_json(&self) -> String {
+        serde_json::to_string_pretty(self).unwrap_or_default() + "\n"
+    }
+
+    /// How many chosen relations were kept: the cutoff's step, or all when there is none.
+    pub fn keep_step(&self) -> usize {
+        self.cutoff.as_ref().map_or(self.kept_count, |c| c.keep)
+    }
+
+    /// The one line the command prints when it is done, for the output `target`.
+    pub fn summary_line(&self, target: &str) -> String {
+        format!(
+            "{target}: {} sliders drive {} numbers, keeping {} of {} relations ({}){}",
+            self.dimension,
+            self.parameter_count,
+            self.kept_count,
+            self.base_constraint_count,
+            self.method,
+            if self.toggles.is_empty() {
+                String::new()
+            } else {
+                format!(", {} part switches", self.toggles.len())
+            }
+        )
+    }
+}
