@@ -1,16 +1,14 @@
 //! `reparamc fit`: fit a model's numbers to pictures of what it should become.
+//!
+//! Flags in, [`reparamc::command::fit`] called (a progress bar while it runs), the fitted
+//! model, the report and the gallery written (each file whole or not at all), diagnostics
+//! out.
 
-use super::render::{BackendArgs, choose_backend, input_error};
-use super::{EXIT_IO_ERROR, EXIT_MODEL_ERROR, report};
-use reparamc::fit::loss::{LossSpec, Target};
-use reparamc::fit::optimize::Optimizer;
-use reparamc::fit::targets::load_target_dir;
-use reparamc::fit::{FitError, FitOptions, Parametric, Stage, constraint_basis, fit, staged};
+use super::EXIT_IO_ERROR;
+use super::render::{BackendArgs, failed, input_error, say};
+use reparamc::command::fit::{Fitted, OptimizerChoice, Options, Progress, Settings, prepare};
 use reparamc::front::source::SourceMap;
 use reparamc::output::{same_file, write_atomic};
-use reparamc::render::image::{Rgb, grid, picture};
-use reparamc::render::scene::DEFAULT_SHADE;
-use reparamc::render::soft::prepare_view;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -120,25 +118,6 @@ enum OptimizerArg {
     Adam,
 }
 
-#[derive(serde::Serialize)]
-struct SlotReport {
-    name: String,
-    before: f64,
-    after: f64,
-}
-
-#[derive(serde::Serialize)]
-struct Report<'a> {
-    model: String,
-    target: String,
-    renderer: String,
-    views: Vec<String>,
-    start_loss: &'a [f64],
-    end_loss: &'a [f64],
-    slots: Vec<SlotReport>,
-    curve: &'a [reparamc::fit::Step],
-}
-
 /// A number from 0 to 1 (clap reports the error with the flag's name).
 fn fraction(text: &str) -> Result<f64, String> {
     match text.trim().parse::<f64>() {
@@ -152,6 +131,49 @@ fn parse_pair(text: &str) -> Option<(f64, f64)> {
     let a: f64 = a.trim().parse().ok()?;
     let b: f64 = b.trim().parse().ok()?;
     (a > 0.0 && b > 0.0 && a.is_finite() && b.is_finite()).then_some((a, b))
+}
+
+impl From<OptimizerArg> for OptimizerChoice {
+    fn from(o: OptimizerArg) -> OptimizerChoice {
+        match o {
+            OptimizerArg::Sgd => OptimizerChoice::Sgd,
+            OptimizerArg::Adam => OptimizerChoice::Adam,
+        }
+    }
+}
+
+/// The command's options from the flags, with `sigma` parsed.
+fn options(args: &Args, sigma: (f64, f64)) -> Options {
+    Options {
+        model: args.model.clone(),
+        target: args.target.clone(),
+        subspace: args.subspace,
+        max_size: args.max_size,
+        gallery: args.gallery.is_some(),
+        backend: args.backend.into(),
+        settings: Settings {
+            lr: args.lr,
+            iterations: args.iterations,
+            rounds: args.rounds,
+            warm: args.warm,
+            lambda: args.lambda,
+            optimizer: args.optimizer.into(),
+            momentum: args.momentum,
+            single_run: args.single_run,
+            sigma,
+            sharpen: args.sharpen,
+            blur: args.blur,
+            shading: args.shading,
+            levels: args.levels,
+            relative_steps: args.relative_steps,
+            polish: args.polish,
+            refine: args.refine,
+            border: args.border,
+            settle: args.settle,
+            proportions: !args.no_proportions,
+            per_item_albedo: !args.one_colour,
+        },
+    }
 }
 
 pub fn run(args: Args) -> ExitCode {
@@ -171,168 +193,41 @@ pub fn run(args: Args) -> ExitCode {
             ),
         );
     };
-    let bad_number = [
-        args.lr,
-        args.lambda,
-        args.blur,
-        args.shading,
-        args.sharpen,
-        args.momentum,
-    ]
-    .iter()
-    .any(|v| !v.is_finite() || *v < 0.0);
-    if bad_number || args.lr == 0.0 {
-        return input_error(
-            "E0703",
-            "--lr must be positive; --lambda, --blur, --shading, --sharpen and --momentum must not be negative".into(),
-        );
-    }
-    // The model.
     let mut sources = SourceMap::new();
-    let loaded = match reparamc::load_model_parsed(&mut sources, &args.model) {
-        Ok(l) => l,
-        Err(d) => {
-            report(&sources, &[*d]);
-            return ExitCode::from(EXIT_MODEL_ERROR);
-        }
+    let mut job = match prepare(&options(&args, sigma), &mut sources) {
+        Ok(j) => j,
+        Err(f) => return failed(&sources, &f),
     };
-    let (parsed, evaluated) = loaded;
-    report(&sources, &evaluated.warnings);
-    let model = &evaluated.model;
-    if model.parts.is_empty() {
-        return input_error(
-            "E0704",
-            format!("{}: the model has no parts to fit", args.model.display()),
-        );
-    }
-    // The targets.
-    let mut set = match load_target_dir(&args.target) {
-        Ok(s) => s,
-        Err(e) => return input_error("E0701", e.to_string()),
-    };
-    if let Some(m) = args.max_size {
-        if m < 8 {
-            return input_error("E0703", "`--max-size` must be at least 8".into());
-        }
-        set = set.downsized(m);
-    }
-    let targets: Vec<Target> = set.images.iter().map(Target::from_rgb).collect();
-    for (t, f) in targets.iter().zip(&set.files) {
-        if t.foreground() == 0 {
-            eprintln!(
-                "warning: {}: no foreground found (the picture is all background colour)",
-                f.display()
-            );
-        }
-    }
-    let mut backend = choose_backend(args.backend);
-    let opts = FitOptions {
-        lr: args.lr,
-        iterations: args.iterations.max(1),
-        rounds: args.rounds.max(1),
-        lambda: args.lambda,
-        optimizer: match args.optimizer {
-            OptimizerArg::Sgd => Optimizer::Sgd {
-                momentum: args.momentum,
-            },
-            OptimizerArg::Adam => Optimizer::adam(),
-        },
-        sigma,
-        loss: LossSpec {
-            sharpen: args.sharpen,
-            blur: args.blur,
-            shading: args.shading,
-            ..LossSpec::default()
-        },
-        levels: args.levels,
-        relative_steps: args.relative_steps,
-        polish: args.polish,
-        settle: args.settle,
-        refine: args.refine,
-        border: args.border,
-        proportions: !args.no_proportions,
-        per_item_albedo: !args.one_colour,
-        damped_rerun: (!args.single_run).then_some(reparamc::fit::DAMPED_FLOOR),
-        ..FitOptions::default()
-    };
-    let stages: Vec<Stage> = if args.subspace {
-        vec![Stage {
-            basis: Some(constraint_basis(model)),
-            rounds: opts.rounds,
-        }]
-    } else {
-        staged(model, opts.rounds, args.warm.unwrap_or(opts.rounds / 2))
-    };
-    let problem = Parametric::new(model);
-    let bar = indicatif::ProgressBar::new((opts.rounds * opts.iterations) as u64);
+    say(&sources, &std::mem::take(&mut job.messages));
+    let bar = indicatif::ProgressBar::new(job.planned_steps() as u64);
     bar.set_style(
         indicatif::ProgressStyle::with_template(
             "{spinner} [{elapsed_precise}] {bar:30} {pos}/{len} round {prefix} loss {msg}",
         )
         .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
     );
-    let result = fit(
-        &problem,
-        &set.cameras,
-        &targets,
-        &stages,
-        backend.as_mut(),
-        &opts,
-        &mut |p| {
-            bar.set_length(p.total_steps as u64);
-            bar.set_prefix(format!("{}", p.step.round + 1));
-            bar.set_message(format!("{:.5}", p.step.loss));
-            bar.set_position(p.done as u64);
-        },
-    );
+    let result = job.run(&mut |p: &Progress| {
+        bar.set_length(p.total_steps as u64);
+        bar.set_prefix(format!("{}", p.step.round + 1));
+        bar.set_message(format!("{:.5}", p.step.loss));
+        bar.set_position(p.done as u64);
+    });
     bar.finish_and_clear();
-    let result = match result {
-        Ok(r) => r,
-        Err(FitError::NothingInView) => {
-            return input_error(
-                "E0702",
-                format!(
-                    "{}: no part of the model is in view of any camera in {}",
-                    args.model.display(),
-                    args.target.join("cameras.json").display()
-                ),
-            );
-        }
-        Err(e) => return input_error("E0701", format!("{}: {e}", args.target.display())),
+    let fitted = match result {
+        Ok(f) => f,
+        Err(f) => return failed(&sources, &f),
     };
-    // Everything is computed; now write, each file whole or not at all.
-    let text = sources.text(parsed.main).to_string();
-    let fitted =
-        reparamc::back::rewrite::with_slot_values(&text, parsed.main, &model.slots, &result.x);
-    let elsewhere = model
-        .slots
-        .iter()
-        .filter(|s| s.span.file != parsed.main && result.x[s.id as usize] != s.value)
-        .count();
-    if elsewhere > 0 {
-        eprintln!("warning: {elsewhere} fitted numbers are in included files and were not written");
-    }
-    let mut outputs: Vec<(PathBuf, Vec<u8>)> = vec![(args.output.clone(), fitted.into_bytes())];
+    say(&sources, &fitted.messages);
+    write_results(&args, fitted)
+}
+
+/// Writes the fitted model, the report and the gallery (each file whole or not at all)
+/// and says what was fitted.
+fn write_results(args: &Args, fitted: Fitted) -> ExitCode {
+    let mut outputs: Vec<(PathBuf, Vec<u8>)> =
+        vec![(args.output.clone(), fitted.scad.into_bytes())];
     if let Some(path) = &args.report {
-        let rep = Report {
-            model: args.model.display().to_string(),
-            target: args.target.display().to_string(),
-            renderer: backend.name(),
-            views: set.cameras.iter().map(|c| c.name.clone()).collect(),
-            start_loss: &result.start_loss,
-            end_loss: &result.end_loss,
-            slots: model
-                .slots
-                .iter()
-                .map(|s| SlotReport {
-                    name: s.name.clone(),
-                    before: s.value,
-                    after: result.x[s.id as usize],
-                })
-                .collect(),
-            curve: &result.curve,
-        };
-        match serde_json::to_string_pretty(&rep) {
+        match serde_json::to_string_pretty(&fitted.report) {
             Ok(j) => outputs.push((path.clone(), (j + "\n").into_bytes())),
             Err(e) => {
                 eprintln!("error: cannot write the report: {e}");
@@ -340,24 +235,8 @@ pub fn run(args: Args) -> ExitCode {
             }
         }
     }
-    if let Some(path) = &args.gallery {
-        let mut cells: Vec<Rgb> = Vec::new();
-        for (cam, img) in set.cameras.iter().zip(&set.images) {
-            for x in [&result.x0, &result.x] {
-                // With the fitted albedos, parts show the targets' light and dark.
-                let scene = problem.scene(x).with_albedo(&result.albedo);
-                let v = prepare_view(&scene, cam, Some(super::render::EDGE_SOFTNESS));
-                let r = backend.render(
-                    &scene,
-                    std::slice::from_ref(&v),
-                    Some(super::render::EDGE_SOFTNESS),
-                    &[DEFAULT_SHADE],
-                );
-                cells.push(picture(&r[0].0));
-            }
-            cells.insert(cells.len() - 1, img.clone());
-        }
-        outputs.push((path.clone(), grid(&cells, 3).encode_png()));
+    if let (Some(path), Some(png)) = (&args.gallery, fitted.gallery) {
+        outputs.push((path.clone(), png));
     }
     for (path, bytes) in &outputs {
         if let Err(e) = write_atomic(path, bytes) {
@@ -365,18 +244,13 @@ pub fn run(args: Args) -> ExitCode {
             return ExitCode::from(EXIT_IO_ERROR);
         }
     }
-    let start: f64 = result.start_loss.iter().sum();
-    let end: f64 = result.end_loss.iter().sum();
-    let moved = model
-        .slots
-        .iter()
-        .filter(|s| (result.x[s.id as usize] - s.value).abs() > 1e-9 * problem.scale)
-        .count();
     eprintln!(
-        "fitted {} of {} numbers to {} views: image loss {start:.5} -> {end:.5}; wrote {}",
-        moved,
-        model.slots.len(),
-        set.cameras.len(),
+        "fitted {} of {} numbers to {} views: image loss {:.5} -> {:.5}; wrote {}",
+        fitted.moved,
+        fitted.numbers,
+        fitted.report.views.len(),
+        fitted.start_loss,
+        fitted.end_loss,
         args.output.display()
     );
     ExitCode::SUCCESS

@@ -85,18 +85,3 @@ pub fn print_stdout(text: &str) -> ExitCode {
         }
     }
 }
-
-/// Loads a model, printing its diagnostics; `None` after an error was reported.
-pub fn load(path: &std::path::Path) -> Option<(SourceMap, reparamc::front::eval::Evaluated)> {
-    let mut sources = SourceMap::new();
-    match reparamc::load_model(&mut sources, path) {
-        Ok(e) => {
-            report(&sources, &e.warnings);
-            Some((sources, e))
-        }
-        Err(d) => {
-            report(&sources, &[*d]);
-            None
-        }
-    }
-}

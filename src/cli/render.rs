@@ -1,21 +1,17 @@
 //! `reparamc render`: pictures of a model from named or explicit cameras.
+//!
+//! Flags in, [`reparamc::command::render`] called, pictures written (a grid, or a folder
+//! of views with its `cameras.json`, all written or none), diagnostics out.
 
-use super::{EXIT_IO_ERROR, EXIT_MODEL_ERROR, load};
+use super::{EXIT_IO_ERROR, EXIT_MODEL_ERROR};
+use reparamc::command::render::{
+    BackendChoice, Cameras, Failure, Layout, Message, Options, Pictures, Projection, render,
+};
 use reparamc::front::diag::Diagnostic;
 use reparamc::front::source::SourceMap;
 use reparamc::output::write_atomic;
-use reparamc::render::camera::{
-    Camera, CameraSpec, Projection, cameras_json, default_views, parse_cameras_json,
-};
-use reparamc::render::image::{grid, picture};
-use reparamc::render::scene::{DEFAULT_SHADE, Scene};
-use reparamc::render::soft::prepare_view;
-use reparamc::render::{Backend, CpuBackend};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::process::ExitCode;
-
-/// Softness of rendered edges (pixels): a little anti-aliasing.
-pub const EDGE_SOFTNESS: f64 = 0.4;
 
 #[derive(clap::Args)]
 pub struct Args {
@@ -74,31 +70,13 @@ pub struct BackendArgs {
     pub cpu: bool,
 }
 
-/// Picks a backend and says which on standard error. A missing GPU is never an error.
-/// Without `--gpu`, a software Vulkan device (lavapipe) is not used: the CPU backend is
-/// faster than a GPU emulated on the same CPU.
-pub fn choose_backend(args: BackendArgs) -> Box<dyn Backend> {
-    #[cfg(feature = "gpu")]
-    if args.gpu || (!args.cpu && reparamc::render::gpu::hardware_likely()) {
-        match reparamc::render::gpu::GpuBackend::with_software(args.gpu) {
-            Ok(g) => {
-                eprintln!("renderer: {}", g.name());
-                return Box::new(g);
-            }
-            Err(e) => {
-                if args.gpu {
-                    eprintln!("note: no GPU backend ({e}); using the CPU");
-                }
-            }
+impl From<BackendArgs> for BackendChoice {
+    fn from(b: BackendArgs) -> BackendChoice {
+        BackendChoice {
+            gpu: b.gpu,
+            cpu: b.cpu,
         }
     }
-    #[cfg(not(feature = "gpu"))]
-    if args.gpu {
-        eprintln!("note: this build has no GPU backend; using the CPU");
-    }
-    let c = CpuBackend;
-    eprintln!("renderer: {}", c.name());
-    Box::new(c)
 }
 
 /// Reports a problem with a non-model input (no source span) and returns the exit code.
@@ -118,15 +96,20 @@ pub fn parse_size(text: &str) -> Option<(u32, u32)> {
     }
 }
 
-fn read_cameras(path: &Path, size: (u32, u32)) -> Result<Vec<Camera>, String> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| format!("{}: cannot read it: {e}", path.display()))?;
-    let specs = parse_cameras_json(&text).map_err(|e| format!("{}: {e}", path.display()))?;
-    specs
-        .iter()
-        .map(|s| s.camera(Some(size)))
-        .collect::<Result<_, _>>()
-        .map_err(|e| format!("{}: {e}", path.display()))
+/// Prints a command's messages in order: diagnostics against `sources`, lines as they are.
+pub fn say(sources: &SourceMap, messages: &[Message]) {
+    for m in messages {
+        match m {
+            Message::Diagnostic(d) => super::report(sources, std::slice::from_ref(d)),
+            Message::Line(line) => eprintln!("{line}"),
+        }
+    }
+}
+
+/// Prints what stopped a command and returns its exit code.
+pub fn failed(sources: &SourceMap, failure: &Failure) -> ExitCode {
+    say(sources, &failure.messages);
+    ExitCode::from(EXIT_MODEL_ERROR)
 }
 
 pub fn run(args: Args) -> ExitCode {
@@ -139,86 +122,69 @@ pub fn run(args: Args) -> ExitCode {
             ),
         );
     };
-    let Some((_, evaluated)) = load(&args.model) else {
-        return ExitCode::from(EXIT_MODEL_ERROR);
-    };
-    let model = &evaluated.model;
-    let scene = Scene::from_parts(&model.parts, &model.csg);
-    let Some((lo, hi)) = scene.bounds() else {
-        return input_error(
-            "E0704",
-            format!("{}: the model has no parts to render", args.model.display()),
-        );
-    };
-    let cameras: Vec<Camera> = if let Some(path) = &args.cameras {
-        match read_cameras(path, size) {
-            Ok(c) => c,
-            Err(e) => return input_error("E0701", e),
-        }
+    let cameras = if let Some(path) = &args.cameras {
+        Cameras::File(path.clone())
     } else if !args.camera.is_empty() {
-        let mut v = Vec::new();
-        for (i, text) in args.camera.iter().enumerate() {
-            match Camera::parse_openscad(
-                &format!("view{}", i + 1),
-                text,
-                args.projection.into(),
-                size.0,
-                size.1,
-            ) {
-                Ok(c) => v.push(c),
-                Err(e) => return input_error("E0703", format!("`--camera {text}`: {e}")),
-            }
+        Cameras::OpenScad {
+            specs: args.camera.clone(),
+            projection: args.projection.into(),
         }
-        v
     } else {
-        if args.views == 0 {
-            return input_error("E0703", "`--views 0`: nothing to render".into());
-        }
-        match default_views(lo, hi, args.views, size.0, size.1) {
-            Ok(v) => v,
-            Err(e) => return input_error("E0703", format!("the default views: {e}")),
-        }
+        Cameras::Around(args.views)
     };
-    let mut backend = choose_backend(args.backend);
-    let views: Vec<_> = cameras
-        .iter()
-        .map(|c| prepare_view(&scene, c, Some(EDGE_SOFTNESS)))
-        .collect();
-    let shades = vec![DEFAULT_SHADE; views.len()];
-    let rendered = backend.render(&scene, &views, Some(EDGE_SOFTNESS), &shades);
-    let pictures: Vec<_> = rendered.iter().map(|(s, _)| picture(s)).collect();
-    if pictures
-        .iter()
-        .zip(&rendered)
-        .all(|(_, (s, _))| s.m.iter().all(|&m| m < 0.5))
-    {
-        eprintln!("warning: no part of the model is in view of any camera");
-    }
     let is_png = args
         .output
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("png"));
-    if is_png {
-        let cols = (pictures.len() as f64).sqrt().ceil() as usize;
-        let img = grid(&pictures, cols.max(1));
-        if let Err(e) = write_atomic(&args.output, &img.encode_png()) {
-            eprintln!("error: cannot write `{}`: {e}", args.output.display());
-            return ExitCode::from(EXIT_IO_ERROR);
+    let opts = Options {
+        model: args.model.clone(),
+        size,
+        cameras,
+        backend: args.backend.into(),
+        layout: if is_png { Layout::Grid } else { Layout::Views },
+    };
+    let mut sources = SourceMap::new();
+    let rendered = match render(&opts, &mut sources) {
+        Ok(r) => r,
+        Err(f) => return failed(&sources, &f),
+    };
+    say(&sources, &rendered.messages);
+    match &rendered.pictures {
+        Pictures::Grid { png, views } => {
+            if let Err(e) = write_atomic(&args.output, png) {
+                eprintln!("error: cannot write `{}`: {e}", args.output.display());
+                return ExitCode::from(EXIT_IO_ERROR);
+            }
+            eprintln!("wrote {} ({views} views)", args.output.display());
+            ExitCode::SUCCESS
         }
-        eprintln!("wrote {} ({} views)", args.output.display(), pictures.len());
-        return ExitCode::SUCCESS;
+        Pictures::Views {
+            files,
+            cameras_json,
+        } => write_folder(&args.output, files, cameras_json),
     }
-    // A folder: one picture per view and the cameras, all written or none.
-    if let Err(e) = std::fs::create_dir_all(&args.output) {
-        eprintln!("error: cannot create `{}`: {e}", args.output.display());
+}
+
+/// One picture per view and the cameras into `dir`, all written or none.
+fn write_folder(
+    dir: &std::path::Path,
+    files: &[(String, Vec<u8>)],
+    cameras_json: &str,
+) -> ExitCode {
+    if let Err(e) = std::fs::create_dir_all(dir) {
+        eprintln!("error: cannot create `{}`: {e}", dir.display());
         return ExitCode::from(EXIT_IO_ERROR);
     }
-    let mut specs = Vec::new();
     let mut written: Vec<PathBuf> = Vec::new();
-    for (cam, img) in cameras.iter().zip(&pictures) {
-        let name = format!("{}.png", cam.name);
-        let path = args.output.join(&name);
-        if let Err(e) = write_atomic(&path, &img.encode_png()) {
+    let all = files
+        .iter()
+        .map(|(name, png)| (dir.join(name), png.as_slice()))
+        .chain(std::iter::once((
+            dir.join("cameras.json"),
+            cameras_json.as_bytes(),
+        )));
+    for (path, bytes) in all {
+        if let Err(e) = write_atomic(&path, bytes) {
             for w in &written {
                 let _ = std::fs::remove_file(w);
             }
@@ -226,20 +192,11 @@ pub fn run(args: Args) -> ExitCode {
             return ExitCode::from(EXIT_IO_ERROR);
         }
         written.push(path);
-        specs.push(CameraSpec::of(cam, Some(name)));
-    }
-    let json = args.output.join("cameras.json");
-    if let Err(e) = write_atomic(&json, cameras_json(&specs).as_bytes()) {
-        for w in &written {
-            let _ = std::fs::remove_file(w);
-        }
-        eprintln!("error: cannot write `{}`: {e}", json.display());
-        return ExitCode::from(EXIT_IO_ERROR);
     }
     eprintln!(
         "wrote {} views and cameras.json to {}",
-        pictures.len(),
-        args.output.display()
+        files.len(),
+        dir.display()
     );
     ExitCode::SUCCESS
 }

@@ -1,1 +1,423 @@
-//! The `fit` command's entry point (being moved here; see ARCHITECTURE.md).
+//! The `fit` command's entry point: fit a model's numbers to pictures of what it should
+//! become.
+//!
+//! In two steps, so that a caller can tell the user what was found before the long part
+//! starts: [`prepare`] checks the settings, loads the model and the target folder and picks
+//! a renderer (a [`Job`], with what the user should read so far); [`Job::run`] fits,
+//! reporting each optimiser step to a callback, and returns the fitted model's text, the
+//! report as data and, when asked, the gallery (before / target / after for every view) as
+//! PNG bytes.
+//!
+//! Invariant: nothing here prints or writes a file; every line the user is to read is a
+//! [`Message`], in the order it arose.
+
+use super::render::{BackendChoice, Failure, Message, as_messages, choose_backend, draw};
+use crate::fit::loss::{LossSpec, Target};
+use crate::fit::optimize::Optimizer;
+use crate::fit::targets::{TargetSet, load_target_dir};
+use crate::fit::{
+    DAMPED_FLOOR, FitError, FitOptions, FitResult, Parametric, Stage, constraint_basis, staged,
+};
+use crate::front::source::SourceMap;
+use crate::ir::Model;
+use crate::render::Backend;
+use crate::render::image::{Rgb, grid, picture};
+use crate::span::FileId;
+use crate::tolerance::RELATIVE_ROUNDOFF;
+use std::path::PathBuf;
+
+pub use crate::fit::{Progress, Step};
+
+/// The update rule.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum OptimizerChoice {
+    /// The paper's: gradient descent (with [`Settings::momentum`]).
+    Sgd,
+    /// Adam: moves far targets faster.
+    Adam,
+}
+
+/// How the fit runs; [`Settings::default`] is the command line's defaults.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Settings {
+    /// Learning rate (slots in units of the model's size); positive.
+    pub lr: f64,
+    /// Optimiser steps per round (0 counts as 1).
+    pub iterations: usize,
+    /// Rounds (0 counts as 1); the shading is matched and the edges sharpened between them.
+    pub rounds: usize,
+    /// Rounds spent first in the structural subspace; `None`: half of the rounds. Ignored
+    /// with [`Options::subspace`].
+    pub warm: Option<usize>,
+    /// Weight of the pull towards the model's own numbers; not negative.
+    pub lambda: f64,
+    pub optimizer: OptimizerChoice,
+    /// Momentum of SGD; not negative.
+    pub momentum: f64,
+    /// With Adam, run each stage once (no damped rerun).
+    pub single_run: bool,
+    /// Edge softness in pixels, first and last round.
+    pub sigma: (f64, f64),
+    /// The `0.2` of `sharpen(I) = I − 0.2·blur(I)`; not negative.
+    pub sharpen: f64,
+    /// Standard deviation of that blur, pixels; not negative.
+    pub blur: f64,
+    /// Weight of shading against the foreground mask; not negative.
+    pub shading: f64,
+    /// Coarse-to-fine levels.
+    pub levels: u32,
+    /// Step each number in proportion to its own size.
+    pub relative_steps: bool,
+    /// Sweeps of single-face moves after the rounds.
+    pub polish: usize,
+    /// Sweeps of moves of a pixel or less on hard edges after the face moves.
+    pub refine: usize,
+    /// Border of background around each picture, a fraction of its height.
+    pub border: f64,
+    /// How far the learning rate falls in each stage's last round (a fraction).
+    pub settle: f64,
+    /// Open with the search over the model's stretch along each axis.
+    pub proportions: bool,
+    /// Fit a brightness per part (`false`: one grey per surface).
+    pub per_item_albedo: bool,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        let fit = FitOptions::default();
+        let loss = LossSpec::default();
+        Settings {
+            lr: fit.lr,
+            iterations: fit.iterations,
+            rounds: fit.rounds,
+            warm: None,
+            lambda: fit.lambda,
+            optimizer: OptimizerChoice::Sgd,
+            momentum: 0.0,
+            single_run: false,
+            sigma: fit.sigma,
+            sharpen: loss.sharpen,
+            blur: loss.blur,
+            shading: loss.shading,
+            levels: fit.levels,
+            relative_steps: fit.relative_steps,
+            polish: fit.polish,
+            refine: fit.refine,
+            border: fit.border,
+            settle: fit.settle,
+            proportions: fit.proportions,
+            per_item_albedo: fit.per_item_albedo,
+        }
+    }
+}
+
+impl Settings {
+    /// The fit's options for these settings.
+    fn fit_options(&self) -> FitOptions {
+        FitOptions {
+            lr: self.lr,
+            iterations: self.iterations.max(1),
+            rounds: self.rounds.max(1),
+            lambda: self.lambda,
+            optimizer: match self.optimizer {
+                OptimizerChoice::Sgd => Optimizer::Sgd {
+                    momentum: self.momentum,
+                },
+                OptimizerChoice::Adam => Optimizer::adam(),
+            },
+            sigma: self.sigma,
+            loss: LossSpec {
+                sharpen: self.sharpen,
+                blur: self.blur,
+                shading: self.shading,
+                ..LossSpec::default()
+            },
+            levels: self.levels,
+            relative_steps: self.relative_steps,
+            polish: self.polish,
+            settle: self.settle,
+            refine: self.refine,
+            border: self.border,
+            proportions: self.proportions,
+            per_item_albedo: self.per_item_albedo,
+            damped_rerun: (!self.single_run).then_some(DAMPED_FLOOR),
+            ..FitOptions::default()
+        }
+    }
+
+    /// Whether the numbers are in range (the message names the flags).
+    fn check(&self) -> Result<(), String> {
+        let numbers = [
+            self.lr,
+            self.lambda,
+            self.blur,
+            self.shading,
+            self.sharpen,
+            self.momentum,
+        ];
+        let bad = numbers.iter().any(|v| !v.is_finite() || *v < 0.0);
+        if bad || self.lr == 0.0 {
+            return Err("--lr must be positive; --lambda, --blur, --shading, --sharpen and --momentum must not be negative".into());
+        }
+        Ok(())
+    }
+}
+
+/// The `fit` command's options.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Options {
+    /// The OpenSCAD model whose numbers to fit.
+    pub model: PathBuf,
+    /// The folder of target pictures with their `cameras.json`.
+    pub target: PathBuf,
+    /// Fit inside the model's constraint subspace.
+    pub subspace: bool,
+    /// Shrink target pictures so their longer side is at most this (at least 8).
+    pub max_size: Option<u32>,
+    /// Draw the gallery.
+    pub gallery: bool,
+    pub backend: BackendChoice,
+    pub settings: Settings,
+}
+
+/// A fit ready to run: the model, the pictures, the renderer.
+pub struct Job {
+    /// What preparing had to say (the model's warnings, pictures without foreground, the
+    /// renderer), for the user before the fit runs.
+    pub messages: Vec<Message>,
+    model_path: PathBuf,
+    target_path: PathBuf,
+    /// The main file's text and id, to write the fitted numbers into.
+    text: String,
+    main: FileId,
+    model: Model,
+    set: TargetSet,
+    targets: Vec<Target>,
+    backend: Box<dyn Backend>,
+    opts: FitOptions,
+    subspace: bool,
+    warm: Option<usize>,
+    gallery: bool,
+}
+
+/// One number of the model, before and after.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct SlotReport {
+    pub name: String,
+    pub before: f64,
+    pub after: f64,
+}
+
+/// The fit's report (`--report`): the inputs, the loss per view at the start and the end,
+/// every number before and after, and the loss curve.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct Report {
+    pub model: String,
+    pub target: String,
+    pub renderer: String,
+    pub views: Vec<String>,
+    pub start_loss: Vec<f64>,
+    pub end_loss: Vec<f64>,
+    pub slots: Vec<SlotReport>,
+    pub curve: Vec<Step>,
+}
+
+/// What a fit produced.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Fitted {
+    /// The main file with the fitted numbers written in.
+    pub scad: String,
+    /// What the user should read about the result.
+    pub messages: Vec<Message>,
+    pub report: Report,
+    /// Before / target / after for every view, three to a row (PNG), when asked for.
+    pub gallery: Option<Vec<u8>>,
+    /// Numbers that moved (by more than round-off), of all the model's numbers.
+    pub moved: usize,
+    pub numbers: usize,
+    /// The image loss summed over the views, at the start and at the end.
+    pub start_loss: f64,
+    pub end_loss: f64,
+}
+
+/// Checks the settings, loads the model (into `sources`) and the targets, and picks the
+/// renderer.
+pub fn prepare(opts: &Options, sources: &mut SourceMap) -> Result<Job, Failure> {
+    if let Err(text) = opts.settings.check() {
+        return Err(Failure::input(Vec::new(), "E0703", text));
+    }
+    let (parsed, evaluated) =
+        crate::front::load_model_parsed(sources, &opts.model).map_err(Failure::from)?;
+    let mut messages = as_messages(evaluated.warnings);
+    if evaluated.model.parts.is_empty() {
+        let text = format!("{}: the model has no parts to fit", opts.model.display());
+        return Err(Failure::input(messages, "E0704", text));
+    }
+    let (set, targets) = match load_targets(opts, &mut messages) {
+        Ok(t) => t,
+        Err((code, text)) => return Err(Failure::input(messages, code, text)),
+    };
+    let backend = choose_backend(opts.backend, &mut messages);
+    Ok(Job {
+        messages,
+        model_path: opts.model.clone(),
+        target_path: opts.target.clone(),
+        text: sources.text(parsed.main).to_string(),
+        main: parsed.main,
+        model: evaluated.model,
+        set,
+        targets,
+        backend,
+        opts: opts.settings.fit_options(),
+        subspace: opts.subspace,
+        warm: opts.settings.warm,
+        gallery: opts.gallery,
+    })
+}
+
+/// The target folder, shrunk as asked, and its pictures as targets; a warning for each
+/// picture without foreground. On failure, the diagnostic's code and text.
+fn load_targets(
+    opts: &Options,
+    messages: &mut Vec<Message>,
+) -> Result<(TargetSet, Vec<Target>), (&'static str, String)> {
+    let mut set = load_target_dir(&opts.target).map_err(|e| ("E0701", e.to_string()))?;
+    if let Some(m) = opts.max_size {
+        if m < 8 {
+            return Err(("E0703", "`--max-size` must be at least 8".into()));
+        }
+        set = set.downsized(m);
+    }
+    let targets: Vec<Target> = set.images.iter().map(Target::from_rgb).collect();
+    for (t, f) in targets.iter().zip(&set.files) {
+        if t.foreground() == 0 {
+            messages.push(Message::Line(format!(
+                "warning: {}: no foreground found (the picture is all background colour)",
+                f.display()
+            )));
+        }
+    }
+    Ok((set, targets))
+}
+
+impl Job {
+    /// Optimiser steps of one run of every stage (reruns may add as many again; each
+    /// [`Progress`] says the true total).
+    pub fn planned_steps(&self) -> usize {
+        self.opts.rounds * self.opts.iterations
+    }
+
+    /// Fits, calling `progress` after every optimiser step.
+    pub fn run(mut self, progress: &mut dyn FnMut(&Progress)) -> Result<Fitted, Failure> {
+        let model = &self.model;
+        let stages: Vec<Stage> = if self.subspace {
+            vec![Stage {
+                basis: Some(constraint_basis(model)),
+                rounds: self.opts.rounds,
+            }]
+        } else {
+            let warm = self.warm.unwrap_or(self.opts.rounds / 2);
+            staged(model, self.opts.rounds, warm)
+        };
+        let problem = Parametric::new(model);
+        let result = crate::fit::fit(
+            &problem,
+            &self.set.cameras,
+            &self.targets,
+            &stages,
+            self.backend.as_mut(),
+            &self.opts,
+            progress,
+        );
+        let result = match result {
+            Ok(r) => r,
+            Err(e) => return Err(self.fit_failure(&e)),
+        };
+        let gallery = self.gallery.then(|| self.gallery_png(&problem, &result));
+        Ok(self.fitted(&problem, result, gallery))
+    }
+
+    /// The diagnostic for a fit that could not start.
+    fn fit_failure(&self, e: &FitError) -> Failure {
+        let text = match e {
+            FitError::NothingInView => {
+                let text = format!(
+                    "{}: no part of the model is in view of any camera in {}",
+                    self.model_path.display(),
+                    self.target_path.join("cameras.json").display()
+                );
+                return Failure::input(Vec::new(), "E0702", text);
+            }
+            e => format!("{}: {e}", self.target_path.display()),
+        };
+        Failure::input(Vec::new(), "E0701", text)
+    }
+
+    /// Before, target and after for every view (with the fitted albedos, so parts show
+    /// the targets' light and dark), three to a row.
+    fn gallery_png(&mut self, problem: &Parametric, result: &FitResult) -> Vec<u8> {
+        let mut cells: Vec<Rgb> = Vec::new();
+        for (cam, img) in self.set.cameras.iter().zip(&self.set.images) {
+            for x in [&result.x0, &result.x] {
+                let scene = problem.scene(x).with_albedo(&result.albedo);
+                let soft = draw(self.backend.as_mut(), &scene, std::slice::from_ref(cam));
+                cells.extend(soft.iter().map(picture));
+            }
+            cells.insert(cells.len() - 1, img.clone());
+        }
+        grid(&cells, 3).encode_png()
+    }
+
+    /// The fitted text, the report and the summary.
+    fn fitted(self, problem: &Parametric, result: FitResult, gallery: Option<Vec<u8>>) -> Fitted {
+        let model = &self.model;
+        let scad =
+            crate::back::rewrite::with_slot_values(&self.text, self.main, &model.slots, &result.x);
+        let mut messages = Vec::new();
+        let elsewhere = model
+            .slots
+            .iter()
+            .filter(|s| s.span.file != self.main && result.x[s.id as usize] != s.value)
+            .count();
+        if elsewhere > 0 {
+            messages.push(Message::Line(format!(
+                "warning: {elsewhere} fitted numbers are in included files and were not written"
+            )));
+        }
+        let moved = model
+            .slots
+            .iter()
+            .filter(|s| {
+                (result.x[s.id as usize] - s.value).abs() > RELATIVE_ROUNDOFF * problem.scale
+            })
+            .count();
+        let report = Report {
+            model: self.model_path.display().to_string(),
+            target: self.target_path.display().to_string(),
+            renderer: self.backend.name(),
+            views: self.set.cameras.iter().map(|c| c.name.clone()).collect(),
+            slots: model
+                .slots
+                .iter()
+                .map(|s| SlotReport {
+                    name: s.name.clone(),
+                    before: s.value,
+                    after: result.x[s.id as usize],
+                })
+                .collect(),
+            start_loss: result.start_loss,
+            end_loss: result.end_loss,
+            curve: result.curve,
+        };
+        Fitted {
+            scad,
+            messages,
+            gallery,
+            moved,
+            numbers: model.slots.len(),
+            start_loss: report.start_loss.iter().sum(),
+            end_loss: report.end_loss.iter().sum(),
+            report,
+        }
+    }
+}

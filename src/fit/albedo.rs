@@ -27,11 +27,10 @@ const DARK: f64 = 0.3;
 /// At most this many alternations between shading and albedo fits.
 const MAX_ALTERNATIONS: usize = 1000;
 /// Alternations stop when no albedo changes by more than this (relative).
-const SETTLED: f64 = 1e-9;
-/// Weight per pixel of the pulls towards the prior shading and towards albedo 1. They
-/// settle what the pixels leave open (orientations a view does not show, items never
-/// seen) and must not bias the rest: at 1e-3 a bookcase's albedo ratios were 1% off.
-const PULL: f64 = 1e-5;
+const SETTLED: f64 = crate::tolerance::ALBEDO_SETTLED;
+/// Weight per pixel of the pulls towards the prior shading and towards albedo 1 (see
+/// [`crate::tolerance::ALBEDO_PULL`]).
+const PULL: f64 = crate::tolerance::ALBEDO_PULL;
 /// Coverage above which a target pixel counts as surface for the fits.
 const SOLID: f32 = 0.99;
 

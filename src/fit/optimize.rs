@@ -7,6 +7,7 @@
 //! `N` (d × d′) a basis of the constraints' null space, and `x_base` a point that satisfies
 //! them.
 
+use crate::tolerance::{FIT_DIVISOR_FLOOR, FIT_RANK_RELATIVE};
 use nalgebra::{DMatrix, DVector};
 
 /// Which update rule.
@@ -34,7 +35,7 @@ impl Optimizer {
         Optimizer::Adam {
             beta1: 0.9,
             beta2: 0.999,
-            eps: 1e-8,
+            eps: crate::tolerance::ADAM_EPSILON,
             floor: 0.0,
         }
     }
@@ -205,7 +206,7 @@ fn orthonormal_columns(m: &DMatrix<f64>) -> DMatrix<f64> {
     };
     let smax = svd.singular_values.iter().fold(0.0f64, |a, &v| a.max(v));
     let keep: Vec<usize> = (0..svd.singular_values.len())
-        .filter(|&i| svd.singular_values[i] > 1e-10 * smax.max(1e-300))
+        .filter(|&i| svd.singular_values[i] > FIT_RANK_RELATIVE * smax.max(FIT_DIVISOR_FLOOR))
         .collect();
     let cols: Vec<DVector<f64>> = keep.iter().map(|&i| u.column(i).into_owned()).collect();
     if cols.is_empty() {
@@ -224,7 +225,7 @@ pub fn null_space(c: &DMatrix<f64>) -> DMatrix<f64> {
     let ctc = c.transpose() * c;
     let eig = ctc.symmetric_eigen();
     let max = eig.eigenvalues.iter().fold(0.0f64, |a, &v| a.max(v.abs()));
-    let tol = 1e-10 * max.max(1e-300) * d as f64;
+    let tol = FIT_RANK_RELATIVE * max.max(FIT_DIVISOR_FLOOR) * d as f64;
     let cols: Vec<DVector<f64>> = (0..d)
         .filter(|&i| eig.eigenvalues[i].abs() <= tol)
         .map(|i| eig.eigenvectors.column(i).into_owned())

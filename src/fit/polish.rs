@@ -8,6 +8,7 @@
 use super::Parametric;
 use crate::analysis::linalg;
 use crate::ir::Affine;
+use crate::tolerance::RELATIVE_EPSILON;
 
 /// Moves of one face tried by [`polish`], as fractions of the part's extent along it
 /// (negative: inwards; −0.95 all but removes the part along that axis).
@@ -83,7 +84,8 @@ fn sweep_faces(
                     let dx = &pinv * b;
                     let cand: Vec<f64> = x.iter().zip(dx.iter()).map(|(a, b)| a + b).collect();
                     // The move must actually move that face.
-                    let moved = (form.eval(&cand) - form.eval(x) - shift).abs() <= 1e-6 * extent;
+                    let moved = (form.eval(&cand) - form.eval(x) - shift).abs()
+                        <= RELATIVE_EPSILON * extent;
                     moved.then_some(cand)
                 })
                 .collect();

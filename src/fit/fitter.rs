@@ -1,0 +1,736 @@
+//! The fit itself: [`fit`] checks its inputs ([`check`]) and runs a [`Fitter`], which holds
+//! everything a fit fixes at its start (the bordered cameras and targets, the coarse levels,
+//! the size guards, the step scales) and runs the schedule as methods: the proportions
+//! search, each stage's rounds of optimiser steps (twice with a damped rerun), the
+//! finishing passes.
+//!
+//! Invariants: every image loss goes through `Fitter::loss_at`, the one call of
+//! [`Backend::loss`]; a step never leaves a size guard nor makes a part that started
+//! drawable degenerate; the lighting (`Look`) is refitted at the start of every round and
+//! after every pass, always on the hard surface at full size.
+
+use super::loss::{LossSpec, Target};
+use super::optimize::{self, OptState, Optimizer, Space};
+use super::options::{
+    FitOptions, GUARD_SWEEPS, HARD_SIGMA, MIN_LEVEL_SIDE, PROPORTIONS_POOLING, RELATIVE_FLOOR,
+    STEP_HALVINGS,
+};
+use super::{Parametric, Stage, albedo, frame, polish, proportions, stages};
+use crate::ir::Affine;
+use crate::render::camera::Camera;
+use crate::render::scene::{DEFAULT_SHADE, NSHADE};
+use crate::render::soft::{ViewPrep, prepare_view};
+use crate::render::{Backend, ImageValues};
+use crate::tolerance::GUARD_MARGIN;
+use std::borrow::Cow;
+
+/// What went wrong before fitting could start.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum FitError {
+    #[error("the model has no parts in view of any camera")]
+    NothingInView,
+    #[error("the model has no parts")]
+    NoParts,
+    #[error("{0} cameras but {1} target images")]
+    Mismatch(usize, usize),
+    #[error("camera `{camera}` is {cw}×{ch} but its target image is {tw}×{th}")]
+    Size {
+        camera: String,
+        cw: u32,
+        ch: u32,
+        tw: u32,
+        th: u32,
+    },
+    #[error("the subspace basis has {0} rows but the model has {1} slots")]
+    Basis(usize, usize),
+}
+
+/// One optimiser step's record.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct Step {
+    pub round: usize,
+    pub iteration: usize,
+    /// Image loss plus regulariser.
+    pub loss: f64,
+    pub image_loss: f64,
+    pub sigma: f64,
+}
+
+/// The outcome of a fit.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FitResult {
+    pub x0: Vec<f64>,
+    pub x: Vec<f64>,
+    pub curve: Vec<Step>,
+    /// Per view: the image loss at the start and at the end (final σ, final shading).
+    pub start_loss: Vec<f64>,
+    pub end_loss: Vec<f64>,
+    pub shades: Vec<[f64; NSHADE]>,
+    /// Per scene item: the albedo fitted last (empty without shading fits).
+    pub albedo: Vec<f64>,
+}
+
+/// How the pictures are lit and coloured, refitted each round: each view's shading
+/// coefficients and each item's albedo.
+#[derive(Clone)]
+struct Look {
+    shades: Vec<[f64; NSHADE]>,
+    albedo: Vec<f64>,
+}
+
+/// Progress report, once per step.
+pub struct Progress<'a> {
+    pub step: &'a Step,
+    /// Steps taken so far, this one included (reruns count).
+    pub done: usize,
+    pub total_steps: usize,
+}
+
+/// Checks targets against cameras and that something is in view.
+pub fn check(
+    problem: &Parametric,
+    cameras: &[Camera],
+    targets: &[Target],
+    backend: &mut dyn Backend,
+) -> Result<(), FitError> {
+    if cameras.len() != targets.len() {
+        return Err(FitError::Mismatch(cameras.len(), targets.len()));
+    }
+    for (c, t) in cameras.iter().zip(targets) {
+        if c.width != t.width || c.height != t.height {
+            return Err(FitError::Size {
+                camera: c.name.clone(),
+                cw: c.width,
+                ch: c.height,
+                tw: t.width,
+                th: t.height,
+            });
+        }
+    }
+    if problem.base.is_empty() {
+        return Err(FitError::NoParts);
+    }
+    let scene = problem.scene(&problem.x0);
+    let views: Vec<ViewPrep> = cameras
+        .iter()
+        .map(|c| prepare_view(&scene, c, None))
+        .collect();
+    let shades = vec![DEFAULT_SHADE; views.len()];
+    let seen = backend
+        .render(&scene, &views, None, &shades)
+        .iter()
+        .any(|(_, h)| h.mask().any(|m| m));
+    if !seen {
+        return Err(FitError::NothingInView);
+    }
+    Ok(())
+}
+
+/// Moves `y` onto `{y : f(x(y)) ≥ min}` for every guard it violates (a few sweeps of
+/// half-space projections).
+fn project_guards(guards: &[(Affine, f64)], space: &Space, y: &mut [f64]) {
+    for _ in 0..GUARD_SWEEPS {
+        let x = space.x(y);
+        let mut moved = false;
+        for (f, min) in guards {
+            let v = f.eval(&x);
+            if v >= *min {
+                continue;
+            }
+            // ∂f/∂y = scale·Bᵀ·a.
+            let mut a = vec![0.0; x.len()];
+            for &(s, c) in &f.terms {
+                a[s as usize] = c;
+            }
+            let g = space.grad_y(&a);
+            let n2: f64 = g.iter().map(|v| v * v).sum();
+            if n2 <= 0.0 {
+                continue;
+            }
+            // Aim a little inside so rounding does not leave it violated.
+            let k = (min - v) * GUARD_MARGIN / n2;
+            for (yi, gi) in y.iter_mut().zip(&g) {
+                *yi += k * gi;
+            }
+            moved = true;
+        }
+        if !moved {
+            break;
+        }
+    }
+}
+
+/// Fits slot values so renders from `cameras` match `targets`, stage after stage.
+pub fn fit(
+    problem: &Parametric,
+    cameras: &[Camera],
+    targets: &[Target],
+    stages: &[Stage],
+    backend: &mut dyn Backend,
+    opts: &FitOptions,
+    progress: &mut dyn FnMut(&Progress),
+) -> Result<FitResult, FitError> {
+    check(problem, cameras, targets, backend)?;
+    let fitter = Fitter::new(problem, cameras, targets, stages, opts)?;
+    Ok(fitter.run(backend, progress))
+}
+
+/// A fit set up: what its start fixes. [`Fitter::run`] runs it.
+pub struct Fitter<'a> {
+    opts: &'a FitOptions,
+    stages: &'a [Stage],
+    /// The problem with its silhouettes' rings fixed for these cameras.
+    problem: Cow<'a, Parametric>,
+    /// The cameras and targets at full size, bordered when [`FitOptions::border`] asks.
+    cameras: Cow<'a, [Camera]>,
+    targets: Cow<'a, [Target]>,
+    /// Levels 1 to `max_level` of rendering small (halved cameras, pooled targets); empty
+    /// when coarse levels are pooled at full size ([`FitOptions::pooled`]).
+    halved: Vec<(Vec<Camera>, Vec<Target>)>,
+    /// The coarsest level every camera allows, at most [`FitOptions::levels`].
+    max_level: u32,
+    /// Rounds of all stages (at least 1).
+    rounds: usize,
+    /// Per part: whether it is drawable at the start (it must stay so).
+    drawable: Vec<bool>,
+    /// Lower bounds `f(x) ≥ min` that keep every part a solid.
+    guards: Vec<(Affine, f64)>,
+    /// How far one unit of an optimiser variable moves each slot.
+    scales: Vec<f64>,
+    /// The damped optimiser each stage reruns with, if any.
+    rerun: Option<Optimizer>,
+}
+
+/// Where a stage starts: its stage, its point and the number of its first round.
+struct Leg<'s> {
+    stage: &'s Stage,
+    start: &'s [f64],
+    round0: usize,
+}
+
+/// One stage's optimiser run as it goes: where it moves, the optimiser's state and its
+/// position.
+struct Descent {
+    space: Space,
+    state: OptState,
+    y: Vec<f64>,
+}
+
+impl Descent {
+    fn x(&self) -> Vec<f64> {
+        self.space.x(&self.y)
+    }
+}
+
+/// Steps counted across every run of a fit (reruns included), reported as they are taken.
+struct Tally<'p> {
+    done: usize,
+    total_steps: usize,
+    report: &'p mut dyn FnMut(&Progress),
+}
+
+impl Tally<'_> {
+    fn record(&mut self, step: &Step) {
+        self.done += 1;
+        (self.report)(&Progress {
+            step,
+            done: self.done,
+            total_steps: self.total_steps,
+        });
+    }
+}
+
+/// What one loss evaluation compares: images of which level (0: full size), how soft, and
+/// the loss's settings (its pooling included).
+struct Compare {
+    level: usize,
+    sigma: f64,
+    spec: LossSpec,
+}
+
+impl<'a> Fitter<'a> {
+    /// Sets a fit up. The inputs must have passed [`check`]; fails when a stage's basis
+    /// does not match the model's slots.
+    pub fn new(
+        problem: &'a Parametric,
+        cameras: &'a [Camera],
+        targets: &'a [Target],
+        stages: &'a [Stage],
+        opts: &'a FitOptions,
+    ) -> Result<Fitter<'a>, FitError> {
+        let (cameras, targets): (Cow<[Camera]>, Cow<[Target]>) = if opts.border > 0.0 {
+            let (c, t) = frame::bordered(cameras, targets, opts.border);
+            (Cow::Owned(c), Cow::Owned(t))
+        } else {
+            (Cow::Borrowed(cameras), Cow::Borrowed(targets))
+        };
+        let problem = if problem.rings.is_empty() {
+            let mut fixed = problem.clone();
+            fixed.fix_rings(&cameras);
+            Cow::Owned(fixed)
+        } else {
+            Cow::Borrowed(problem)
+        };
+        let d = problem.x0.len();
+        for st in stages {
+            if let Some(b) = &st.basis
+                && b.nrows() != d
+            {
+                return Err(FitError::Basis(b.nrows(), d));
+            }
+        }
+        // Parts that start out drawable must stay so.
+        let drawable = problem.geoms(&problem.x0).iter().map(|g| g.valid).collect();
+        let guards = problem.guards(opts.min_extent * problem.scale);
+        let max_level = coarsest_level(&cameras, opts.levels);
+        let halved = if opts.pooled {
+            Vec::new()
+        } else {
+            halved_levels(&cameras, &targets, max_level)
+        };
+        Ok(Fitter {
+            opts,
+            stages,
+            scales: step_scales(&problem, opts),
+            rounds: stages.iter().map(|s| s.rounds).sum::<usize>().max(1),
+            rerun: opts.damped_rerun.and_then(|f| opts.optimizer.damped(f)),
+            problem,
+            cameras,
+            targets,
+            halved,
+            max_level,
+            drawable,
+            guards,
+        })
+    }
+
+    /// Runs the fit: the proportions search, the stages, the finishing passes.
+    pub fn run(&self, backend: &mut dyn Backend, progress: &mut dyn FnMut(&Progress)) -> FitResult {
+        let runs = if self.rerun.is_some() { 2 } else { 1 };
+        let mut tally = Tally {
+            done: 0,
+            total_steps: self.rounds * self.opts.iterations * runs,
+            report: progress,
+        };
+        let problem = &*self.problem;
+        let mut look = Look {
+            shades: vec![DEFAULT_SHADE; self.cameras.len()],
+            albedo: Vec::new(),
+        };
+        self.refit_shades(backend, &problem.x0, &mut look);
+        let sharp = self.opts.sigma.1;
+        let start_loss = self
+            .image_loss(backend, 0, &problem.x0, sharp, &look, false)
+            .per_view;
+        let mut x = problem.x0.clone();
+        if self.opts.proportions {
+            x = self.proportions(backend, x, &look);
+            self.refit_shades(backend, &x, &mut look);
+        }
+        let (x, curve) = self.run_stages(backend, &mut tally, x, &mut look);
+        self.refit_shades(backend, &x, &mut look);
+        let x = self.finish(backend, x, &mut look);
+        let end_loss = self
+            .image_loss(backend, 0, &x, sharp, &look, false)
+            .per_view;
+        FitResult {
+            x0: problem.x0.clone(),
+            x,
+            curve,
+            start_loss,
+            end_loss,
+            shades: look.shades,
+            albedo: look.albedo,
+        }
+    }
+
+    /// The cameras and targets of level `level` (0: full size). Only levels up to
+    /// `max_level` exist, and levels above 0 only when they are not pooled.
+    fn level(&self, level: usize) -> (&[Camera], &[Target]) {
+        match level {
+            0 => (&self.cameras, &self.targets),
+            k => {
+                let (cams, tgts) = &self.halved[k - 1];
+                (cams, tgts)
+            }
+        }
+    }
+
+    /// Silhouette softness of round `r`: geometric from `sigma.0` to `sigma.1`.
+    fn sigma_at(&self, r: usize) -> f64 {
+        let (first, last) = self.opts.sigma;
+        if self.rounds == 1 {
+            last
+        } else {
+            let f = r as f64 / (self.rounds - 1) as f64;
+            first * (last / first).powf(f)
+        }
+    }
+
+    /// Coarse level of round `r`: the first half of the rounds walks down the levels; the
+    /// rest is full resolution.
+    fn level_at(&self, r: usize) -> usize {
+        if self.max_level == 0 {
+            return 0;
+        }
+        let half = (self.rounds / 2).max(1);
+        let per = (half as f64 / self.max_level as f64).max(1.0);
+        self.max_level.saturating_sub((r as f64 / per) as u32) as usize
+    }
+
+    /// The image loss of slot values `x` as `at` says (with `grad`, its gradient too): the
+    /// one place a fit asks the renderer for a loss.
+    fn loss_at(
+        &self,
+        backend: &mut dyn Backend,
+        x: &[f64],
+        look: &Look,
+        at: &Compare,
+        grad: bool,
+    ) -> ImageValues {
+        let (cams, tgts) = self.level(at.level);
+        let scene = self.problem.scene(x).with_albedo(&look.albedo);
+        let views: Vec<ViewPrep> = cams
+            .iter()
+            .map(|c| prepare_view(&scene, c, Some(at.sigma)))
+            .collect();
+        super::loss::image_loss(
+            backend,
+            &scene,
+            &views,
+            at.sigma,
+            &look.shades,
+            tgts,
+            &at.spec,
+            grad,
+        )
+    }
+
+    /// The image loss at coarse level `level`: pooled levels render at full size and
+    /// compare pooled residuals; otherwise small images against pooled targets.
+    fn image_loss(
+        &self,
+        backend: &mut dyn Backend,
+        level: usize,
+        x: &[f64],
+        sigma: f64,
+        look: &Look,
+        grad: bool,
+    ) -> ImageValues {
+        let (render_level, pool) = if self.opts.pooled {
+            (0, level as u32)
+        } else {
+            (level, 0)
+        };
+        let spec = LossSpec {
+            level: self.opts.loss.level + pool,
+            ..self.opts.loss
+        };
+        let at = Compare {
+            level: render_level,
+            sigma,
+            spec,
+        };
+        self.loss_at(backend, x, look, &at, grad)
+    }
+
+    /// Refits each view's shading and each item's albedo to the targets at `x` (at full
+    /// size, on the hard surface), when the options ask for it.
+    fn refit_shades(&self, backend: &mut dyn Backend, x: &[f64], look: &mut Look) {
+        if !self.opts.fit_shading {
+            return;
+        }
+        let scene = self.problem.scene(x);
+        let views: Vec<ViewPrep> = self
+            .cameras
+            .iter()
+            .map(|c| prepare_view(&scene, c, None))
+            .collect();
+        let hard: Vec<_> = backend
+            .render(&scene, &views, None, &look.shades)
+            .into_iter()
+            .map(|(_, h)| h)
+            .collect();
+        let fitted = albedo::fit_shading(
+            &hard,
+            &self.targets,
+            DEFAULT_SHADE,
+            self.opts.per_item_albedo,
+        );
+        look.shades = fitted.shades;
+        look.albedo = fitted.albedo;
+    }
+
+    /// The regulariser `λ‖(x − x₀)/size‖²` and its gradient.
+    fn reg(&self, x: &[f64]) -> (f64, Vec<f64>) {
+        let problem = &*self.problem;
+        let mut v = 0.0;
+        let mut g = vec![0.0; x.len()];
+        for i in 0..x.len() {
+            let r = (x[i] - problem.x0[i]) / problem.scale;
+            v += r * r;
+            g[i] = 2.0 * self.opts.lambda * r / problem.scale;
+        }
+        (self.opts.lambda * v, g)
+    }
+
+    /// Every part that started drawable is drawable at `x`.
+    fn keeps_drawable(&self, x: &[f64]) -> bool {
+        self.problem
+            .geoms(x)
+            .iter()
+            .zip(&self.drawable)
+            .all(|(g, &was)| g.valid || !was)
+    }
+
+    /// `x` is a point a fit may stand on: finite, inside the guards, no part degenerate.
+    fn valid(&self, x: &[f64]) -> bool {
+        x.iter().all(|v| v.is_finite())
+            && self.guards.iter().all(|(f, min)| f.eval(x) >= *min)
+            && self.keeps_drawable(x)
+    }
+
+    /// The proportions search from `x`, compared coarsely (pooled twice, the first round's
+    /// softness) so that far edges still count.
+    fn proportions(&self, backend: &mut dyn Backend, x: Vec<f64>, look: &Look) -> Vec<f64> {
+        let at = Compare {
+            level: 0,
+            sigma: self.opts.sigma.0,
+            spec: LossSpec {
+                level: self.opts.loss.level + PROPORTIONS_POOLING,
+                ..self.opts.loss
+            },
+        };
+        let weights = stages::axis_weights(&self.problem.base, self.problem.x0.len());
+        let mut coarse = |x: &[f64]| self.loss_at(backend, x, look, &at, false).total();
+        proportions::search(x, &weights, &mut coarse, &|x| self.valid(x))
+    }
+
+    /// Every stage from `x`, each from where the previous one ended; with a damped rerun,
+    /// the run with the lower final loss goes on. The end point and the kept runs' steps.
+    fn run_stages(
+        &self,
+        backend: &mut dyn Backend,
+        tally: &mut Tally,
+        mut x: Vec<f64>,
+        look: &mut Look,
+    ) -> (Vec<f64>, Vec<Step>) {
+        let mut curve = Vec::with_capacity(tally.total_steps);
+        let mut round = 0;
+        for stage in self.stages {
+            let leg = Leg {
+                stage,
+                start: &x,
+                round0: round,
+            };
+            let start_look = look.clone();
+            let (mut best_x, mut best_steps) =
+                self.run_stage(backend, tally, &leg, self.opts.optimizer, look);
+            if let Some(damped) = self.rerun {
+                let mut look_b = start_look;
+                let (xb, steps_b) = self.run_stage(backend, tally, &leg, damped, &mut look_b);
+                let la = self.final_loss(backend, &best_x, look);
+                let lb = self.final_loss(backend, &xb, &mut look_b);
+                if lb < la {
+                    (*look, best_x, best_steps) = (look_b, xb, steps_b);
+                }
+            }
+            curve.extend(best_steps);
+            x = best_x;
+            round += stage.rounds;
+        }
+        (x, curve)
+    }
+
+    /// One stage from `leg.start` with `optimizer`, its steps numbered from `leg.round0`.
+    fn run_stage(
+        &self,
+        backend: &mut dyn Backend,
+        tally: &mut Tally,
+        leg: &Leg,
+        optimizer: Optimizer,
+        look: &mut Look,
+    ) -> (Vec<f64>, Vec<Step>) {
+        let space = match &leg.stage.basis {
+            None => Space::slots(leg.start, &self.scales),
+            Some(n) => Space::subspace(leg.start, n.clone(), &self.scales),
+        };
+        let dim = space.dim();
+        let mut descent = Descent {
+            space,
+            state: OptState::new(optimizer, dim),
+            y: vec![0.0; dim],
+        };
+        let iterations = self.opts.iterations;
+        let mut steps = Vec::with_capacity(leg.stage.rounds * iterations);
+        let end = leg.round0 + leg.stage.rounds;
+        for round in leg.round0..end {
+            let sigma = self.sigma_at(round);
+            let level = self.level_at(round);
+            let last = round + 1 == end;
+            self.refit_shades(backend, &descent.x(), look);
+            for it in 0..iterations {
+                let lr = optimize::round_rate(self.opts.lr, self.opts.settle, last, it, iterations);
+                let (image, reg) = self.descend(backend, &mut descent, level, sigma, lr, look);
+                let step = Step {
+                    round,
+                    iteration: it,
+                    loss: image + reg,
+                    image_loss: image,
+                    sigma,
+                };
+                steps.push(step);
+                tally.record(&step);
+            }
+        }
+        (descent.x(), steps)
+    }
+
+    /// One optimiser step at coarse level `level`, softness `sigma` and rate `lr`: the
+    /// image loss and the regulariser where it stood.
+    fn descend(
+        &self,
+        backend: &mut dyn Backend,
+        descent: &mut Descent,
+        level: usize,
+        sigma: f64,
+        lr: f64,
+        look: &Look,
+    ) -> (f64, f64) {
+        let xs = descent.x();
+        let out = self.image_loss(backend, level, &xs, sigma, look, true);
+        let (rv, rg) = self.reg(&xs);
+        let mut gx = self.problem.chain(&out.dtheta);
+        for (g, r) in gx.iter_mut().zip(&rg) {
+            *g += r;
+        }
+        let gy = descent.space.grad_y(&gx);
+        let delta = descent.state.step(&gy, lr);
+        self.take_step(descent, delta);
+        (out.total(), rv)
+    }
+
+    /// Moves the descent by `−delta`, made safe: at most [`FitOptions::max_step`] per
+    /// variable, projected back onto the size guards it would leave, and halved until no
+    /// part that started drawable degenerates (not moved at all if that never happens).
+    fn take_step(&self, descent: &mut Descent, mut delta: Vec<f64>) {
+        let big = delta.iter().fold(0.0f64, |a, d| a.max(d.abs()));
+        if big > self.opts.max_step && big.is_finite() {
+            let k = self.opts.max_step / big;
+            delta.iter_mut().for_each(|d| *d *= k);
+        }
+        let y = &descent.y;
+        let mut cand: Vec<f64> = y.iter().zip(&delta).map(|(a, d)| a - d).collect();
+        project_guards(&self.guards, &descent.space, &mut cand);
+        for (d, (a, c)) in delta.iter_mut().zip(y.iter().zip(&cand)) {
+            *d = a - c;
+        }
+        for _ in 0..STEP_HALVINGS {
+            let cand: Vec<f64> = y.iter().zip(&delta).map(|(a, d)| a - d).collect();
+            let ok =
+                cand.iter().all(|v| v.is_finite()) && self.keeps_drawable(&descent.space.x(&cand));
+            if ok {
+                descent.y = cand;
+                return;
+            }
+            delta.iter_mut().for_each(|d| *d *= 0.5);
+        }
+    }
+
+    /// The final loss of a candidate, on the hard surface's shading as the fit ends.
+    fn final_loss(&self, backend: &mut dyn Backend, x: &[f64], look: &mut Look) -> f64 {
+        self.refit_shades(backend, x, look);
+        self.image_loss(backend, 0, x, self.opts.sigma.1, look, false)
+            .total()
+            + self.reg(x).0
+    }
+
+    /// The finishing passes the options ask for: face moves ([`polish`]), then moves of a
+    /// pixel or less on hard edges ([`polish::refine`]), each followed by a refit of the
+    /// lighting.
+    fn finish(&self, backend: &mut dyn Backend, mut x: Vec<f64>, look: &mut Look) -> Vec<f64> {
+        let problem = &*self.problem;
+        let valid = |x: &[f64]| self.valid(x);
+        if self.opts.polish > 0 {
+            let sigma = self.opts.sigma.1;
+            let mut eval = |x: &[f64]| {
+                self.image_loss(backend, 0, x, sigma, look, false).total() + self.reg(x).0
+            };
+            x = polish(problem, x, self.opts.polish, &mut eval, &valid);
+            self.refit_shades(backend, &x, look);
+        }
+        if self.opts.refine > 0 {
+            let pixel = self
+                .cameras
+                .iter()
+                .map(Camera::pixel_size)
+                .fold(f64::INFINITY, f64::min);
+            let mut eval = |x: &[f64]| {
+                self.image_loss(backend, 0, x, HARD_SIGMA, look, false)
+                    .total()
+                    + self.reg(x).0
+            };
+            x = polish::refine(problem, x, pixel, self.opts.refine, &mut eval, &valid);
+            self.refit_shades(backend, &x, look);
+        }
+        x
+    }
+}
+
+/// The coarsest level, at most `levels`, at which every camera's image halves evenly to at
+/// least [`MIN_LEVEL_SIDE`] pixels a side.
+fn coarsest_level(cameras: &[Camera], levels: u32) -> u32 {
+    let mut max_level = 0u32;
+    while max_level < levels
+        && cameras.iter().all(|c| {
+            let k = 1u32 << (max_level + 1);
+            c.width % k == 0
+                && c.height % k == 0
+                && c.width / k >= MIN_LEVEL_SIDE
+                && c.height / k >= MIN_LEVEL_SIDE
+        })
+    {
+        max_level += 1;
+    }
+    max_level
+}
+
+/// Levels 1 to `max_level` of small images: each halves the previous level's cameras and
+/// pools its targets.
+fn halved_levels(
+    cameras: &[Camera],
+    targets: &[Target],
+    max_level: u32,
+) -> Vec<(Vec<Camera>, Vec<Target>)> {
+    let mut levels: Vec<(Vec<Camera>, Vec<Target>)> = Vec::new();
+    for _ in 0..max_level {
+        let (cams, tgts) = match levels.last() {
+            Some((c, t)) => (&c[..], &t[..]),
+            None => (cameras, targets),
+        };
+        let next = (
+            cams.iter()
+                .map(|c| c.with_size(c.width / 2, c.height / 2))
+                .collect(),
+            tgts.iter().map(Target::pooled).collect(),
+        );
+        levels.push(next);
+    }
+    levels
+}
+
+/// Step scale per slot: the model's size, or (relative steps) the slot's own magnitude
+/// with a floor, so thin parts move in proportion.
+fn step_scales(problem: &Parametric, opts: &FitOptions) -> Vec<f64> {
+    problem
+        .x0
+        .iter()
+        .map(|&v| {
+            if opts.relative_steps {
+                v.abs().max(RELATIVE_FLOOR * problem.scale)
+            } else {
+                problem.scale
+            }
+        })
+        .collect()
+}

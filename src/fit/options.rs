@@ -1,0 +1,140 @@
+//! What a fit may be told ([`FitOptions`], the user's settings) and what it is built with
+//! (the algorithm's constants, below them).
+//!
+//! [`FitOptions::default`] is the paper's loss and schedule (SGD, learning rate 0.05, ten
+//! rounds of 30 steps, σ from 2 to 0.25 pixels), opened by our proportions search and with
+//! an albedo per item. The fields are plain data, grouped by what they set: the schedule,
+//! what the loss compares, how far a step may go, the finishing passes and the pictures.
+//! Lengths are in units of the model's size (the longest side of its bounding box) unless
+//! a field says pixels.
+//!
+//! Invariant: every field is a setting someone may want to change; numbers that only the
+//! algorithm's design fixes are constants here, not fields.
+
+use super::loss::LossSpec;
+use super::optimize::Optimizer;
+
+/// Settings of a fit; [`FitOptions::default`] is the paper's loss and schedule, opened by our
+/// proportions search and with an albedo per item (both can be turned off).
+#[derive(Debug, Clone, PartialEq)]
+pub struct FitOptions {
+    // ---- the schedule: rounds of optimiser steps ----------------------------------------
+    /// Learning rate (slots in units of the model's size per unit gradient).
+    pub lr: f64,
+    /// Optimiser steps per round.
+    pub iterations: usize,
+    /// Rounds; the shading is refitted and the edges sharpened between rounds.
+    pub rounds: usize,
+    pub optimizer: Optimizer,
+    /// In the last round of each stage the learning rate falls linearly by this fraction
+    /// of `lr` over the round (see [`super::optimize::round_rate`]), so the stage ends
+    /// almost at rest rather than wherever constant steps left it (Adam's steps stay near
+    /// `lr` however close it is; on a 2.5 mm desk top that is a visible error). 0: the
+    /// paper's constant rate.
+    pub settle: f64,
+    /// With Adam: every stage runs a second time from the same start with Adam's `floor`
+    /// at this value, and the run with the lower final loss goes on to the next stage.
+    /// Plain Adam gives a slot whose gradient is noise (a hollow seen only at a hard crease
+    /// inside its box) full-size steps and can walk it out of the model, where nothing
+    /// brings it back; damped Adam keeps such a slot still but moves small parts slowly.
+    /// `None`: one run per stage.
+    pub damped_rerun: Option<f64>,
+
+    // ---- what the loss compares ---------------------------------------------------------
+    /// Silhouette softness in pixels: first round, last round (geometric in between).
+    pub sigma: (f64, f64),
+    pub loss: LossSpec,
+    /// Weight of `‖x − x₀‖²` (slots in units of the model's size).
+    pub lambda: f64,
+    /// Match each view's shading to its target at the start of every round.
+    pub fit_shading: bool,
+    /// With `fit_shading`: fit an albedo per item too, so parts of other colours in the
+    /// targets (black tyres, two woods) do not read as shading (see [`super::albedo`]).
+    pub per_item_albedo: bool,
+    /// Coarse-to-fine: the first rounds render at `1/2^levels` of the targets' size and
+    /// compare with pooled targets, one level finer every `rounds / (2·levels)` rounds, so
+    /// parts far from their place in the target still feel it (and early rounds are cheap).
+    /// 0: the paper's single resolution.
+    pub levels: u32,
+    /// Coarse levels render at full size and pool the difference (slower, but thin parts
+    /// keep their true weight) instead of rendering small images.
+    pub pooled: bool,
+
+    // ---- how far a step may go ----------------------------------------------------------
+    /// Largest change of one variable in one step (units of the model's size).
+    pub max_step: f64,
+    /// Step each slot in units of its own magnitude (at least [`RELATIVE_FLOOR`] of the
+    /// model's size) instead of the model's size.
+    pub relative_steps: bool,
+    /// Smallest world extent of a part, in units of the model's size.
+    pub min_extent: f64,
+
+    // ---- passes before and after the gradient rounds ------------------------------------
+    /// Open with a search over the model's stretch along each axis (see
+    /// [`super::proportions`]).
+    pub proportions: bool,
+    /// Sweeps of face moves after the gradient rounds (see [`super::polish`]); 0: none.
+    pub polish: usize,
+    /// Sweeps of slot and face moves on hard edges after the face moves (see
+    /// [`super::polish::refine`]); 0: none.
+    pub refine: usize,
+
+    // ---- the pictures -------------------------------------------------------------------
+    /// The pictures show the whole object: the fit sees each picture inside a frame of
+    /// background this fraction of its height wide, so that parts reaching out of the
+    /// pictures are drawn back in rather than left unseen. 0: only the pictures.
+    pub border: f64,
+}
+
+impl Default for FitOptions {
+    fn default() -> Self {
+        FitOptions {
+            lr: 0.05,
+            iterations: 30,
+            rounds: 10,
+            lambda: 0.001,
+            optimizer: Optimizer::sgd(),
+            sigma: (2.0, 0.25),
+            loss: LossSpec::default(),
+            max_step: 0.02,
+            fit_shading: true,
+            per_item_albedo: true,
+            min_extent: 0.002,
+            relative_steps: false,
+            polish: 0,
+            refine: 0,
+            border: 0.0,
+            settle: 0.0,
+            damped_rerun: Some(DAMPED_FLOOR),
+            proportions: true,
+            levels: 0,
+            pooled: true,
+        }
+    }
+}
+
+// ---- the algorithm's constants ----------------------------------------------------------
+
+/// Adam's `floor` in the damped rerun of every stage ([`FitOptions::damped_rerun`]).
+pub const DAMPED_FLOOR: f64 = 0.05;
+
+/// Silhouette softness of [`super::polish::refine`]'s loss, in pixels: hard but for a
+/// sliver.
+pub const HARD_SIGMA: f64 = 0.02;
+
+/// Floor of relative step scales, in units of the model's size.
+pub const RELATIVE_FLOOR: f64 = 0.05;
+
+/// Pools of the targets (each 2×2) under which the proportions search compares, so that
+/// edges far from their place still count.
+pub const PROPORTIONS_POOLING: u32 = 2;
+
+/// Sweeps of half-space projections that move a step back inside the size guards.
+pub const GUARD_SWEEPS: usize = 8;
+
+/// Halvings of a step, at most, before a step that would make a part degenerate is given
+/// up (the optimiser then stays where it is for that iteration).
+pub const STEP_HALVINGS: usize = 10;
+
+/// Smallest side, in pixels, of a coarse level's images.
+pub const MIN_LEVEL_SIDE: u32 = 16;

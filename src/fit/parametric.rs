@@ -1,0 +1,187 @@
+//! A model prepared for fitting ([`Parametric`]): each part's kind and the affine forms
+//! of its parameters in the slots, so that the fit can rebuild the scene at any slot values
+//! and carry the renderer's gradient per part parameter back to the slots.
+//!
+//! Invariants: `forms`, `kinds`, `base` and `faces` have one entry per part of the model;
+//! every form reads slots below `x0.len()`; `scale` is positive.
+
+use crate::ir::{Affine, Model};
+use crate::render::camera::Camera;
+use crate::render::scene::{Kind, NTHETA, PartGeom, Scene, theta_at, theta_forms};
+use crate::tolerance::{FIT_DIVISOR_FLOOR, FIT_SIZE_FLOOR};
+
+/// A model prepared for fitting: each part's kind and the slot forms of its parameters.
+#[derive(Debug, Clone)]
+pub struct Parametric {
+    pub kinds: Vec<(Kind, bool)>,
+    pub forms: Vec<[Option<Affine>; NTHETA]>,
+    pub base: Vec<crate::ir::Part>,
+    pub csg: crate::ir::CsgNode,
+    pub x0: Vec<f64>,
+    /// The model's size (longest side of its bounding box).
+    pub scale: f64,
+    /// Fixed points per circle of each curved part's silhouette (see [`Parametric::fix_rings`]).
+    pub rings: Vec<u32>,
+    /// Each part's face planes (axis, high side, affine form), for face moves.
+    pub faces: Vec<Vec<(u8, bool, Affine)>>,
+}
+
+impl Parametric {
+    pub fn new(model: &Model) -> Parametric {
+        let kinds = model
+            .parts
+            .iter()
+            .map(|p| {
+                let g = PartGeom::from_part(p);
+                (g.kind, g.centered)
+            })
+            .collect();
+        let forms = model.parts.iter().map(theta_forms).collect();
+        Parametric {
+            kinds,
+            forms,
+            base: model.parts.clone(),
+            csg: model.csg.clone(),
+            x0: model.slot_values(),
+            scale: model.size().max(FIT_SIZE_FLOOR),
+            rings: Vec::new(),
+            faces: {
+                let mut faces = vec![Vec::new(); model.parts.len()];
+                for f in crate::analysis::candidates::affine_features(model) {
+                    if let crate::ir::FeatureKind::Plane { axis, high } = f.kind
+                        && let Some(form) = f.forms.first()
+                    {
+                        faces[f.part].push((axis, high, form.clone()));
+                    }
+                }
+                faces
+            },
+        }
+    }
+
+    /// Fixes each curved part's silhouette polygon to the finest count any camera needs at
+    /// the start, so the loss stays smooth as radii change.
+    pub fn fix_rings(&mut self, cameras: &[Camera]) {
+        let geoms = self.geoms(&self.x0);
+        self.rings = geoms
+            .iter()
+            .map(|g| {
+                cameras
+                    .iter()
+                    .map(|c| {
+                        let r = g.r1.max(g.r2);
+                        crate::render::scene::ring_count(g, &c.frame(), r) as u32
+                    })
+                    .max()
+                    .unwrap_or(0)
+            })
+            .collect();
+    }
+
+    /// The parts' geometry at slot values `x`.
+    pub fn geoms(&self, x: &[f64]) -> Vec<PartGeom> {
+        self.base
+            .iter()
+            .zip(&self.forms)
+            .zip(&self.kinds)
+            .enumerate()
+            .map(|(i, ((p, f), &(kind, centered)))| {
+                let mut g = PartGeom::from_theta(kind, centered, theta_at(p, f, x));
+                g.ring = self.rings.get(i).copied().unwrap_or(0);
+                g
+            })
+            .collect()
+    }
+
+    pub fn scene(&self, x: &[f64]) -> Scene {
+        Scene::new(self.geoms(x), &self.csg)
+    }
+
+    /// `∂loss/∂x` from `∂loss/∂θ`.
+    pub fn chain(&self, dtheta: &[[f64; NTHETA]]) -> Vec<f64> {
+        let mut g = vec![0.0; self.x0.len()];
+        for (forms, d) in self.forms.iter().zip(dtheta) {
+            for (f, &dv) in forms.iter().zip(d) {
+                if dv == 0.0 {
+                    continue;
+                }
+                if let Some(f) = f {
+                    for &(s, a) in &f.terms {
+                        g[s as usize] += a * dv;
+                    }
+                }
+            }
+        }
+        g
+    }
+
+    /// Lower bounds that keep every part a solid: each size (and each scale factor of an
+    /// axis-aligned transform) stays at least `min_extent` in world units, radii stay
+    /// non-negative. Only bounds that hold at `x₀` are returned.
+    pub fn guards(&self, min_extent: f64) -> Vec<(Affine, f64)> {
+        let mut out: Vec<(Affine, f64)> = Vec::new();
+        let x0 = &self.x0;
+        for (i, (forms, &(kind, _))) in self.forms.iter().zip(&self.kinds).enumerate() {
+            let g = PartGeom::from_part(&self.base[i]);
+            let col = |j: usize| -> f64 {
+                (0..3)
+                    .map(|r| g.theta[4 * r + j].powi(2))
+                    .sum::<f64>()
+                    .sqrt()
+                    .max(FIT_DIVISOR_FLOOR)
+            };
+            let local = [g.hi[0] - g.lo[0], g.hi[1] - g.lo[1], g.hi[2] - g.lo[2]];
+            let mut push = |f: &Option<Affine>, sign: f64, min: f64| {
+                if let Some(f) = f {
+                    let f = f.scale(sign);
+                    if f.eval(x0) >= min {
+                        out.push((f, min));
+                    }
+                }
+            };
+            match kind {
+                Kind::Box => {
+                    for a in 0..3 {
+                        push(&forms[12 + a], 1.0, min_extent / col(a));
+                    }
+                }
+                Kind::Frustum => {
+                    push(&forms[12], 1.0, min_extent / col(2));
+                    push(&forms[13], 1.0, 0.0);
+                    push(&forms[14], 1.0, 0.0);
+                    if let (Some(a), Some(b)) = (&forms[13], &forms[14]) {
+                        push(&Some(a.add(b)), 1.0, min_extent / col(0).max(col(1)));
+                    }
+                }
+                Kind::Sphere => push(&forms[12], 1.0, min_extent / col(0)),
+            }
+            // Scale factors of an axis-aligned map keep their sign and some size.
+            let aligned =
+                (0..3).all(|r| (0..3).filter(|&c| g.theta[4 * r + c] != 0.0).count() == 1);
+            if aligned {
+                for r in 0..3 {
+                    for c in 0..3 {
+                        let v = g.theta[4 * r + c];
+                        if v != 0.0 && local[c] > 0.0 {
+                            push(&forms[4 * r + c], v.signum(), min_extent / local[c]);
+                        }
+                    }
+                }
+            }
+        }
+        out
+    }
+
+    /// Slots that reach some part's geometry.
+    pub fn live_slots(&self) -> Vec<bool> {
+        let mut live = vec![false; self.x0.len()];
+        for forms in &self.forms {
+            for f in forms.iter().flatten() {
+                for s in f.slots() {
+                    live[s as usize] = true;
+                }
+            }
+        }
+        live
+    }
+}
