@@ -175,6 +175,50 @@ pub const LARGE_RUN: usize = 32;
 /// In a large run, each feature is paired with this many neighbours (see below).
 pub const RUN_NEIGHBOURS: usize = 8;
 
+/// One feature per class of identical features (same relation group, same forms), with
+/// each class's size.
+fn feature_classes(model: &Model) -> (Vec<AffineFeature>, Vec<usize>) {
+    let mut class_of: std::collections::HashMap<((RelationKind, u8), Vec<u64>), usize> =
+        Default::default();
+    let mut features: Vec<AffineFeature> = Vec::new();
+    let mut class_sizes: Vec<usize> = Vec::new();
+    for f in affine_features(model) {
+        let key = (relation_of(f.kind), form_key(&f.forms));
+        match class_of.get(&key) {
+            Some(&i) => class_sizes[i] += 1,
+            None => {
+                class_of.insert(key, features.len());
+                features.push(f);
+                class_sizes.push(1);
+            }
+        }
+    }
+    (features, class_sizes)
+}
+
+/// The relation of `kind` between features `a < b`: their forms' differences, zero.
+fn candidate(
+    kind: RelationKind,
+    features: &[AffineFeature],
+    class_sizes: &[usize],
+    a: usize,
+    b: usize,
+) -> Candidate {
+    let rows = features[a]
+        .forms
+        .iter()
+        .zip(&features[b].forms)
+        .map(|(p, q)| p.sub(q))
+        .collect();
+    Candidate {
+        kind,
+        a,
+        b,
+        rows,
+        multiplicity: class_sizes[a] * class_sizes[b],
+    }
+}
+
 /// Finds every candidate that holds on the model, listing for discovery only what the
 /// `variations` (slot values) can tell apart.
 ///
@@ -187,23 +231,7 @@ pub const RUN_NEIGHBOURS: usize = 8;
 /// pair is listed.
 pub fn find_candidates_for(model: &Model, variations: &[Vec<f64>]) -> Candidates {
     let tolerance = Tolerance::for_size(model.size());
-    let all = affine_features(model);
-    // Classes of identical features (same relation group, same forms).
-    let mut class_of: std::collections::HashMap<((RelationKind, u8), Vec<u64>), usize> =
-        Default::default();
-    let mut features: Vec<AffineFeature> = Vec::new();
-    let mut class_sizes: Vec<usize> = Vec::new();
-    for f in all {
-        let key = (relation_of(f.kind), form_key(&f.forms));
-        match class_of.get(&key) {
-            Some(&i) => class_sizes[i] += 1,
-            None => {
-                class_of.insert(key, features.len());
-                features.push(f);
-                class_sizes.push(1);
-            }
-        }
-    }
+    let (features, class_sizes) = feature_classes(model);
     let mut identical: std::collections::BTreeMap<RelationKind, usize> = Default::default();
     let mut groups: std::collections::BTreeMap<(RelationKind, u8), Vec<usize>> = Default::default();
     for (i, f) in features.iter().enumerate() {
@@ -281,22 +309,10 @@ pub fn find_candidates_for(model: &Model, variations: &[Vec<f64>]) -> Candidates
             }
             start = end;
         }
-        for (x, y) in pairs {
+        list.extend(pairs.into_iter().map(|(x, y)| {
             let (a, b) = if x < y { (x, y) } else { (y, x) };
-            let rows = features[a]
-                .forms
-                .iter()
-                .zip(&features[b].forms)
-                .map(|(p, q)| p.sub(q))
-                .collect();
-            list.push(Candidate {
-                kind,
-                a,
-                b,
-                rows,
-                multiplicity: class_sizes[a] * class_sizes[b],
-            });
-        }
+            candidate(kind, &features, &class_sizes, a, b)
+        }));
     }
     list.sort_by_key(|c| (c.kind, c.a, c.b));
     identical.retain(|_, n| *n > 0);

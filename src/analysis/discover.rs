@@ -170,6 +170,109 @@ fn shift_of<R>(
     )
 }
 
+impl Discovery {
+    /// No step yet: the curve starts at 0.
+    fn start() -> Discovery {
+        Discovery {
+            order: Vec::new(),
+            scores: Vec::new(),
+            curve: vec![0.0],
+            implied: Vec::new(),
+            tiers: Vec::new(),
+            worst: Vec::new(),
+        }
+    }
+
+    /// Records a step: candidate `c` chosen with `score` in `tier`, its worst loss, and the
+    /// curve's value after it (the candidates it made implied follow).
+    fn push_step(&mut self, c: usize, score: f64, tier: u8, worst: f64, curve: f64) {
+        self.order.push(c);
+        self.scores.push(score);
+        self.tiers.push(tier);
+        self.worst.push(worst);
+        self.curve.push(curve);
+        self.implied.push(Vec::new());
+    }
+}
+
+/// Which candidates hold each slot: what to look at again when slots move or the basis
+/// changes around them.
+fn candidates_by_slot(candidates: &Candidates, slots: usize) -> Vec<Vec<u32>> {
+    let mut by_slot: Vec<Vec<u32>> = vec![Vec::new(); slots];
+    for (i, c) in candidates.list.iter().enumerate() {
+        let mut mine: Vec<u32> = c.rows.iter().flat_map(|r| r.slots()).collect();
+        mine.sort_unstable();
+        mine.dedup();
+        for s in mine {
+            by_slot[s as usize].push(i as u32);
+        }
+    }
+    by_slot
+}
+
+/// Moves every variation onto the chosen rows plus `rows`, updating its prepared reference
+/// and its fidelity to the original. Returns the slots to look at again (`rows`' own and
+/// those moved beyond `roundoff`) and every slot that moved at all.
+fn move_variations<S: Similarity>(
+    vars: &mut [Variation<'_, S::Reference>],
+    faces: &Faces,
+    chosen: &mut Chosen,
+    rows: &[&Affine],
+    sim: &S,
+    roundoff: f64,
+) -> (HashSet<u32>, HashSet<u32>) {
+    let mut dirty: HashSet<u32> = rows.iter().flat_map(|r| r.slots()).collect();
+    let mut moved_any: HashSet<u32> = HashSet::new();
+    for v in vars.iter_mut() {
+        let shift = shift_of(v, faces, chosen, rows);
+        let mut moved: Vec<u32> = Vec::new();
+        for (s, delta) in shift {
+            v.current[s as usize] += delta;
+            moved_any.insert(s);
+            if delta.abs() > roundoff {
+                dirty.insert(s);
+                moved.push(s);
+            }
+        }
+        if !moved.is_empty() {
+            if let Some(r) = v.reference.as_mut() {
+                sim.update_reference(r, &v.current, &moved);
+            }
+            let away: Vec<u32> = (0..v.current.len() as u32)
+                .filter(|&s| v.current[s as usize] != v.sample.values[s as usize])
+                .collect();
+            let original = v
+                .original
+                .get_or_insert_with(|| sim.reference(&v.sample.values, &v.sample.optional));
+            v.fidelity = sim.similarity_changed(&v.current, &away, original);
+        }
+    }
+    (dirty, moved_any)
+}
+
+/// Takes out of the pool the candidates the chosen rows now imply, into `gone`. Only
+/// candidates holding a pivot whose row changed can have become implied.
+fn drop_implied(
+    basis: &mut RowBasis,
+    candidates: &Candidates,
+    by_slot: &[Vec<u32>],
+    pool: &mut Pool,
+    gone: &mut Vec<usize>,
+) {
+    let mut pivots = basis.take_touched();
+    pivots.sort_unstable();
+    pivots.dedup();
+    for s in pivots {
+        for &k in &by_slot[s as usize] {
+            let k = k as usize;
+            if pool.is_alive(k) && implied(basis, &rows_of(candidates, k)) {
+                pool.kill(k);
+                gone.push(k);
+            }
+        }
+    }
+}
+
 /// Runs the greedy selection to the end (every candidate chosen or implied).
 ///
 /// `tiers[c]` ranks candidate `c` by prior plausibility (0 first): each step takes the best
@@ -197,17 +300,7 @@ pub fn discover<S: Similarity>(
     };
     chosen.members = chosen.blocks.members();
     let mut pool = Pool::new(tiers, |i| !implied(&chosen.basis, &rows_of(candidates, i)));
-    // Which candidates hold each slot: what to look at again when slots move or the basis
-    // changes around them.
-    let mut by_slot: Vec<Vec<u32>> = vec![Vec::new(); slots];
-    for (i, c) in candidates.list.iter().enumerate() {
-        let mut mine: Vec<u32> = c.rows.iter().flat_map(|r| r.slots()).collect();
-        mine.sort_unstable();
-        mine.dedup();
-        for s in mine {
-            by_slot[s as usize].push(i as u32);
-        }
-    }
+    let by_slot = candidates_by_slot(candidates, slots);
     let mut vars: Vec<Variation<'_, S::Reference>> = samples
         .iter()
         .map(|s| Variation {
@@ -219,14 +312,7 @@ pub fn discover<S: Similarity>(
             fidelity: 1.0,
         })
         .collect();
-    let mut out = Discovery {
-        order: Vec::new(),
-        scores: Vec::new(),
-        curve: vec![0.0],
-        implied: Vec::new(),
-        tiers: Vec::new(),
-        worst: Vec::new(),
-    };
+    let mut out = Discovery::start();
     let scale = samples
         .iter()
         .flat_map(|s| s.values.iter())
@@ -264,12 +350,8 @@ pub fn discover<S: Similarity>(
                 }
                 chosen.add(&rows, &mut vars);
                 forget(&mut cache, &by_slot, rows.iter().flat_map(|r| r.slots()));
-                out.order.push(c);
-                out.scores.push(1.0);
-                out.tiers.push(tier);
-                out.worst.push(0.0);
-                out.curve.push(*out.curve.last().unwrap_or(&0.0));
-                out.implied.push(Vec::new());
+                let same = *out.curve.last().unwrap_or(&0.0);
+                out.push_step(c, 1.0, tier, 0.0, same);
             }
         } else {
             let Some((score, c)) = best_candidate(
@@ -287,32 +369,8 @@ pub fn discover<S: Similarity>(
             };
             let rows = rows_of(candidates, c);
             let sims = cache[c].take().unwrap_or_default();
-            let mut dirty: HashSet<u32> = rows.iter().flat_map(|r| r.slots()).collect();
-            let mut moved_any: HashSet<u32> = HashSet::new();
-            for v in vars.iter_mut() {
-                let shift = shift_of(v, faces, &mut chosen, &rows);
-                let mut moved: Vec<u32> = Vec::new();
-                for (s, delta) in shift {
-                    v.current[s as usize] += delta;
-                    moved_any.insert(s);
-                    if delta.abs() > bounds.roundoff {
-                        dirty.insert(s);
-                        moved.push(s);
-                    }
-                }
-                if !moved.is_empty() {
-                    if let Some(r) = v.reference.as_mut() {
-                        sim.update_reference(r, &v.current, &moved);
-                    }
-                    let away: Vec<u32> = (0..v.current.len() as u32)
-                        .filter(|&s| v.current[s as usize] != v.sample.values[s as usize])
-                        .collect();
-                    let original = v
-                        .original
-                        .get_or_insert_with(|| sim.reference(&v.sample.values, &v.sample.optional));
-                    v.fidelity = sim.similarity_changed(&v.current, &away, original);
-                }
-            }
+            let (dirty, moved_any) =
+                move_variations(&mut vars, faces, &mut chosen, &rows, sim, bounds.roundoff);
             for &s in &moved_any {
                 for &k in &by_slot[s as usize] {
                     let k = k as usize;
@@ -322,34 +380,23 @@ pub fn discover<S: Similarity>(
                 }
             }
             forget(&mut cache, &by_slot, dirty);
-            out.worst
-                .push(sims.iter().fold(0.0, |w, s| f64::max(w, 1.0 - s)));
+            let worst = sims.iter().fold(0.0, |w, s| f64::max(w, 1.0 - s));
             chosen.add(&rows, &mut vars);
             pool.kill(c);
             let mean = vars.iter().map(|v| v.fidelity).sum::<f64>() / vars.len() as f64;
-            out.order.push(c);
-            out.scores.push(score);
-            out.tiers.push(tier);
-            out.curve.push(1.0 - mean);
-            out.implied.push(Vec::new());
+            out.push_step(c, score, tier, worst, 1.0 - mean);
         }
         if chosen.joined {
             chosen.members = chosen.blocks.members();
             chosen.joined = false;
         }
-        // Only candidates holding a pivot whose row changed can have become implied.
-        let mut pivots = chosen.basis.take_touched();
-        pivots.sort_unstable();
-        pivots.dedup();
-        for s in pivots {
-            for &k in &by_slot[s as usize] {
-                let k = k as usize;
-                if pool.is_alive(k) && implied(&chosen.basis, &rows_of(candidates, k)) {
-                    pool.kill(k);
-                    gone.push(k);
-                }
-            }
-        }
+        drop_implied(
+            &mut chosen.basis,
+            candidates,
+            &by_slot,
+            &mut pool,
+            &mut gone,
+        );
         gone.sort_unstable();
         if let Some(last) = out.implied.last_mut() {
             *last = gone;
