@@ -9,7 +9,8 @@
 //! 3. the nesting of the parse tree is measured without recursion and refused beyond
 //!    [`MAX_DEPTH`];
 //! 4. `build` turns the pairs into the AST, with tight spans and decoded literals
-//!    (`strings`).
+//!    (`strings`), folding operator chains by the one precedence table (`precedence`),
+//!    which `errors` also reads.
 //!
 //! Stack safety: pest and the builder recurse once per nesting level. pest checks its own
 //! stack and fails cleanly when it runs short; the builder runs on the caller's stack only
@@ -22,6 +23,7 @@
 
 mod build;
 mod errors;
+mod precedence;
 mod scan;
 mod strings;
 #[cfg(test)]
