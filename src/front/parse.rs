@@ -2,9 +2,10 @@
 //!
 //! Owns the pest grammar `grammar/openscad.pest` and every step between text and tree:
 //!
-//! 1. `scan` walks the text once, collecting the comments (the grammar skips them) and
-//!    rejecting unterminated strings and block comments, and brackets nested absurdly
-//!    deep, with specific diagnostics;
+//! 1. `scan`, the lexer, walks the text once, collecting the comments (the grammar skips
+//!    them) and rejecting unterminated strings and block comments, and brackets nested
+//!    absurdly deep, with specific diagnostics. The same pass is the front end's token
+//!    stream ([`tokens`]), which variant files are matched with;
 //! 2. pest parses; `errors` turns its failures into readable diagnostics;
 //! 3. the nesting of the parse tree is measured without recursion and refused beyond
 //!    [`MAX_DEPTH`];
@@ -36,6 +37,7 @@ use pest::Parser;
 use pest::error::ErrorVariant;
 use pest::iterators::Pairs;
 use scan::Scanned;
+pub use scan::{Token, TokenKind, tokens};
 
 /// Code of every diagnostic the parser produces.
 pub const SYNTAX_ERROR: &str = "E0001";
