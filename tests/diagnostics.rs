@@ -163,3 +163,36 @@ fn comment_lines_are_read() {
         Some((12, 7))
     );
 }
+
+/// A variant file whose structure differs from its model's: the diagnostic points into both
+/// files and shows the lines that differ as a unified diff, where lines that change only
+/// numbers do not count.
+#[test]
+fn a_variant_of_another_structure_shows_the_differing_lines() {
+    let model = Path::new("tests/bad/variation/shelf.scad");
+    let variant = Path::new("tests/bad/variation/round_sides.scad");
+    let mut sources = SourceMap::new();
+    let (loaded, evaluated) = match reparamc::load_model_parsed(&mut sources, model) {
+        Ok(x) => x,
+        Err(d) => panic!("{}", d.render_plain(&sources)),
+    };
+    let result =
+        reparamc::variation::load_variation(&mut sources, loaded.main, &evaluated.model, variant);
+    let Err(d) = result else {
+        panic!("a variant with round sides matched the model");
+    };
+    let rendered = d.render_plain(&sources);
+    snapshot("variation_other_structure", variant, &rendered);
+    assert!(rendered.starts_with("error[E0601]"), "{rendered}");
+    for line in [
+        "--- tests/bad/variation/shelf.scad",
+        "+++ tests/bad/variation/round_sides.scad",
+        "@@ -6,5 +6,5 @@",
+        "-    translate([x, 0, 0]) cube([2, depth, height]);",
+        "+    translate([x, 0, 0]) cylinder(r = 2, h = height);",
+        "// the boards",
+    ] {
+        assert!(rendered.contains(line), "no `{line}` in:\n{rendered}");
+    }
+    assert!(!rendered.contains("+width"), "{rendered}");
+}

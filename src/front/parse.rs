@@ -2,14 +2,16 @@
 //!
 //! Owns the pest grammar `grammar/openscad.pest` and every step between text and tree:
 //!
-//! 1. `scan` walks the text once, collecting the comments (the grammar skips them) and
-//!    rejecting unterminated strings and block comments, and brackets nested absurdly
-//!    deep, with specific diagnostics;
+//! 1. `scan`, the lexer, walks the text once, collecting the comments (the grammar skips
+//!    them) and rejecting unterminated strings and block comments, and brackets nested
+//!    absurdly deep, with specific diagnostics. The same pass is the front end's token
+//!    stream ([`tokens`]), which variant files are matched with;
 //! 2. pest parses; `errors` turns its failures into readable diagnostics;
 //! 3. the nesting of the parse tree is measured without recursion and refused beyond
 //!    [`MAX_DEPTH`];
 //! 4. `build` turns the pairs into the AST, with tight spans and decoded literals
-//!    (`strings`).
+//!    (`strings`), folding operator chains by the one precedence table (`precedence`),
+//!    which `errors` also reads.
 //!
 //! Stack safety: pest and the builder recurse once per nesting level. pest checks its own
 //! stack and fails cleanly when it runs short; the builder runs on the caller's stack only
@@ -22,6 +24,7 @@
 
 mod build;
 mod errors;
+mod precedence;
 mod scan;
 mod strings;
 #[cfg(test)]
@@ -34,6 +37,7 @@ use pest::Parser;
 use pest::error::ErrorVariant;
 use pest::iterators::Pairs;
 use scan::Scanned;
+pub use scan::{Token, TokenKind, tokens};
 
 /// Code of every diagnostic the parser produces.
 pub const SYNTAX_ERROR: &str = "E0001";

@@ -25,6 +25,7 @@
 //! Break points are candidates: extra ones cost a little time, never accuracy.
 
 use super::shape::{Kind, Shape, roots};
+use crate::tolerance::GEOM_BOUNDS_PAD;
 
 /// The cap rims of a frustum: `(z, radius)`.
 fn caps(kind: &Kind) -> [(f64, f64); 2] {
@@ -282,7 +283,7 @@ impl Shape {
         // Only the part of a frustum's quadric between its caps is its surface.
         let slab = match self.kind {
             Kind::Frustum { z0, z1, .. } => {
-                let pad = 1e-9 * (z1 - z0);
+                let pad = GEOM_BOUNDS_PAD * (z1 - z0);
                 (z0 - pad, z1 + pad)
             }
             _ => (f64::NEG_INFINITY, f64::INFINITY),

@@ -14,6 +14,7 @@
 
 use super::breaks::LEVEL;
 use super::shape::Shape;
+use crate::tolerance::{GEOM_BISECTION, GEOM_SCAN_INSET, GEOM_SLIVER};
 
 /// Scan points across a strip (plus one near each end).
 const SCAN: usize = 30;
@@ -63,17 +64,17 @@ pub(crate) fn crossings(cv: &Curves, a: f64, b: f64, sc: &mut Scratch, out: &mut
     let w = b - a;
     let first = out.len();
     let mut pts = Vec::with_capacity(SCAN + 2);
-    pts.push(a + 1e-6 * w);
+    pts.push(a + GEOM_SCAN_INSET * w);
     pts.extend((0..SCAN).map(|i| a + w * (i as f64 + 0.5) / SCAN as f64));
-    pts.push(b - 1e-6 * w);
+    pts.push(b - GEOM_SCAN_INSET * w);
     let mut prev = (pts[0], signature(cv, pts[0], sc));
     for &p in &pts[1..] {
         let next = (p, signature(cv, p, sc));
         // Every change between the two points, from the left.
         let mut lo = prev;
         while lo.1 != next.1 && out.len() - first < MOST {
-            let (x, after) = locate(cv, lo, next, 1e-9 * w, sc);
-            if x > a + 1e-7 * w && x < b - 1e-7 * w {
+            let (x, after) = locate(cv, lo, next, GEOM_BISECTION * w, sc);
+            if x > a + GEOM_SLIVER * w && x < b - GEOM_SLIVER * w {
                 out.push(x);
             }
             lo = after;
@@ -84,7 +85,7 @@ pub(crate) fn crossings(cv: &Curves, a: f64, b: f64, sc: &mut Scratch, out: &mut
     let mut last = f64::NEG_INFINITY;
     let mut k = first;
     for i in first..out.len() {
-        if out[i] - last > 1e-7 * w {
+        if out[i] - last > GEOM_SLIVER * w {
             last = out[i];
             out[k] = out[i];
             k += 1;

@@ -37,6 +37,10 @@ use super::crossings::{self, Curves, Hasher};
 use super::csg::{Iv, Program, Surf, clipped_common_len, clipped_len};
 use super::quad::{self, Tol, V3};
 use super::shape::Shape;
+use crate::tolerance::{
+    GEOM_COINCIDENT, GEOM_ROUNDOFF, GEOM_TIE_OF_COINCIDENT, QUAD_AREA_ATOL, QUAD_AREA_RTOL,
+    QUAD_LINE_ATOL, QUAD_LINE_RTOL, QUAD_MIN_WIDTH,
+};
 
 /// Most shapes in a cell of the spatial index.
 const LEAF: usize = 12;
@@ -105,18 +109,18 @@ pub(crate) fn integrate(job: &Job) -> V3 {
         shapes: job.shapes,
         size,
         z: (rmin[2], rmax[2]),
-        eps: 1e-12 * size,
+        eps: GEOM_COINCIDENT * size,
         line_tol: Tol {
-            rtol: 1e-10,
-            atol_density: 1e-11 * size,
-            min_width: 1e-9 * size,
+            rtol: QUAD_LINE_RTOL,
+            atol_density: QUAD_LINE_ATOL * size,
+            min_width: QUAD_MIN_WIDTH * size,
             budget: 200,
             short: 0.0,
         },
         area_tol: Tol {
-            rtol: 1e-9,
-            atol_density: 1e-10 * size * size,
-            min_width: 1e-9 * size,
+            rtol: QUAD_AREA_RTOL,
+            atol_density: QUAD_AREA_ATOL * size * size,
+            min_width: QUAD_MIN_WIDTH * size,
             budget: 200,
             // Narrow pieces of strips (between rim extremes of similar parts) are smooth
             // enough for the 7/15 rule; lines keep 10/21, which needs fewer splits there.
@@ -257,7 +261,7 @@ impl Integrator<'_> {
         cuts.retain(|&c| c >= r.lo[o] && c <= r.hi[o]);
         cuts.sort_unstable_by(f64::total_cmp);
         // Breaks closer than rounding noise (a cos 90° of 6e-17) would only make slivers.
-        let eps = 1e-14 * self.size;
+        let eps = GEOM_ROUNDOFF * self.size;
         cuts.dedup_by(|b, a| *b - *a <= eps);
         if let Some(last) = cuts.last_mut() {
             *last = r.hi[o];
@@ -534,7 +538,7 @@ fn push_kinds(a: &[Iv], b: &[Iv], z: (f64, f64), eps: f64, out: &mut Vec<u64>) {
 /// How far an end of B may lie before an end `t` of A and still tie with it: rounding
 /// noise (a hundredth of `eps`, or ~50 ulps of `t` far from the origin).
 fn tie(t: f64, eps: f64) -> f64 {
-    1e-2 * eps + 1e-14 * t.abs()
+    GEOM_TIE_OF_COINCIDENT * eps + GEOM_ROUNDOFF * t.abs()
 }
 
 /// The end points of both lists and the clip planes, merged in order along the line, each

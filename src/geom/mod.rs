@@ -57,6 +57,7 @@ mod tests_models;
 pub use aabb::Aabb;
 
 use crate::ir::{CsgNode, Part};
+use crate::tolerance::GEOM_COINCIDENT;
 use csg::{Iv, Program, Surf};
 use integrate::Job;
 use shape::{Hit, Shape};
@@ -153,7 +154,7 @@ impl Solid {
         let reach = self
             .size
             .max(ray.origin.iter().fold(0.0, |m, v| m.max(v.abs())));
-        let eps = 1e-12 * reach / len;
+        let eps = GEOM_COINCIDENT * reach / len;
         self.program.eval(
             &mut |i| {
                 let h = shapes[i as usize].hit_ray(ray.origin, ray.dir)?;

@@ -18,6 +18,8 @@
 //! Invariants: results are finite sums of finite samples; budgets of splits and a smallest
 //! splittable width bound the work for any input.
 
+use crate::tolerance::{GEOM_BISECTION, GEOM_SLIVER, QUAD_MIN_WIDTH};
+
 pub(crate) type V3 = [f64; 3];
 
 pub(crate) fn add(a: V3, b: V3) -> V3 {
@@ -311,7 +313,7 @@ impl Run {
         let (k, err, ys, ss) = g;
         // Structure changes narrower than this are left to the error estimate: below it,
         // rounding (two breaks within an ulp, a grazing chord) makes structure flicker.
-        let wide = b - a > self.tol.min_width.max(1e-7 * self.width);
+        let wide = b - a > self.tol.min_width.max(GEOM_SLIVER * self.width);
         if wide
             && self.structure_splits > 0
             && let Some(i) = (0..self.nodes(b - a).len() - 1).find(|&i| ss[i] != ss[i + 1])
@@ -330,7 +332,7 @@ impl Run {
 
     /// Halves the piece with the largest error until the errors fit the allowance.
     fn refine(&mut self, f: &mut impl FnMut(f64) -> (V3, u64)) {
-        let min_width = self.tol.min_width.max(1e-9 * self.width);
+        let min_width = self.tol.min_width.max(QUAD_MIN_WIDTH * self.width);
         while self.err > self.allowed && self.splits > 0 {
             let Some(worst) = (0..self.pieces.len())
                 .max_by(|&i, &j| self.pieces[i].err.total_cmp(&self.pieces[j].err))
@@ -357,7 +359,7 @@ fn locate(f: &mut impl FnMut(f64) -> (V3, u64), lo: (f64, u64), hi: (f64, u64), 
     let mut hi = hi.0;
     // Close enough that the change sits between a piece's end and its first node (~1e-5 of
     // the piece in), where a kink costs ~(1e-9)² of the piece and no further splitting.
-    let eps = 1e-9 * width;
+    let eps = GEOM_BISECTION * width;
     for _ in 0..64 {
         let m = 0.5 * (lo.0 + hi);
         if !(hi - lo.0 > eps) || m <= lo.0 || m >= hi {

@@ -18,6 +18,7 @@
 //! constant over the footprint).
 
 use crate::ir::{Part, Primitive};
+use crate::tolerance::{GEOM_BOUNDS_PAD, GEOM_NEGLIGIBLE_ENTRY, GEOM_ROUNDOFF};
 
 /// Face codes: a box's `2·axis` (low side) and `2·axis + 1` (high side); a frustum's caps
 /// and side; a sphere's single surface.
@@ -130,7 +131,7 @@ fn inverse(m: &[[f64; 4]; 3]) -> Option<[[f64; 3]; 3]> {
     let norms: f64 = (0..3)
         .map(|i| (0..3).map(|j| a(i, j) * a(i, j)).sum::<f64>().sqrt())
         .product();
-    if !(det.abs() > 1e-14 * norms) || !det.is_finite() {
+    if !(det.abs() > GEOM_ROUNDOFF * norms) || !det.is_finite() {
         return None;
     }
     // (L⁻¹)[i][j] = cofactor(j, i) / det
@@ -143,7 +144,7 @@ fn inverse(m: &[[f64; 4]; 3]) -> Option<[[f64; 3]; 3]> {
 fn is_signed_permutation(m: &[[f64; 4]; 3]) -> bool {
     let big = |i: usize, j: usize| {
         let norm = (0..3).map(|k| m[i][k].abs()).fold(0.0, f64::max);
-        m[i][j].abs() > 1e-12 * norm
+        m[i][j].abs() > GEOM_NEGLIGIBLE_ENTRY * norm
     };
     (0..3).all(|i| (0..3).filter(|&j| big(i, j)).count() == 1)
         && (0..3).all(|j| (0..3).filter(|&i| big(i, j)).count() == 1)
@@ -191,7 +192,7 @@ impl Shape {
     fn is_prism_along(&self, a: usize) -> bool {
         let inv = &self.inv;
         let norm = inv.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
-        let big = |i: usize, j: usize| inv[i][j].abs() > 1e-12 * norm;
+        let big = |i: usize, j: usize| inv[i][j].abs() > GEOM_NEGLIGIBLE_ENTRY * norm;
         let Some(u) = (0..3).find(|&i| big(i, a)) else {
             return false;
         };
@@ -319,7 +320,7 @@ impl Shape {
     fn misses_bounds(&self, o: [f64; 3], d: [f64; 3]) -> bool {
         let (mut t0, mut t1) = (f64::NEG_INFINITY, f64::INFINITY);
         for a in 0..3 {
-            let pad = 1e-9 * (self.hi[a] - self.lo[a]);
+            let pad = GEOM_BOUNDS_PAD * (self.hi[a] - self.lo[a]);
             let (lo, hi) = (self.lo[a] - pad, self.hi[a] + pad);
             if d[a] == 0.0 {
                 if o[a] < lo || o[a] > hi {

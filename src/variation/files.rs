@@ -5,7 +5,9 @@
 //! diagnostic that points into both files. Each slot of the model then takes the variant's
 //! number at the same place; a frozen literal (one that decides structure) must not differ.
 
+use super::diff;
 use crate::front::diag::{DResult, Diagnostic};
+use crate::front::parse::{Token, TokenKind, tokens};
 use crate::front::source::SourceMap;
 use crate::ir::{FreezeReason, Model};
 use crate::span::{FileId, Span};
@@ -20,95 +22,118 @@ pub struct Variation {
     pub values: Vec<f64>,
 }
 
-#[derive(Debug, Clone, PartialEq)]
-enum Tok {
-    Num(f64),
-    Word(String),
-    Str(String),
-    Punct(String),
+/// A text and its tokens (the front end's token stream).
+pub(super) struct Lexed<'a> {
+    pub text: &'a str,
+    pub tokens: Vec<Token>,
 }
 
-/// Tokens of an OpenSCAD text with their byte ranges; comments and whitespace dropped.
-fn tokens(text: &str) -> Vec<(Tok, usize, usize)> {
-    let b = text.as_bytes();
-    let mut out = Vec::new();
-    let mut i = 0;
-    while i < b.len() {
-        let c = b[i];
-        let start = i;
-        if c.is_ascii_whitespace() {
-            i += 1;
-        } else if text[i..].starts_with("//") {
-            i = text[i..].find('\n').map_or(b.len(), |n| i + n);
-        } else if text[i..].starts_with("/*") {
-            i = text[i + 2..].find("*/").map_or(b.len(), |n| i + 2 + n + 2);
-        } else if c.is_ascii_digit() || (c == b'.' && b.get(i + 1).is_some_and(u8::is_ascii_digit))
-        {
-            while i < b.len() && (b[i].is_ascii_digit() || b[i] == b'.') {
-                i += 1;
-            }
-            if i < b.len() && (b[i] == b'e' || b[i] == b'E') {
-                let mut j = i + 1;
-                if j < b.len() && (b[j] == b'+' || b[j] == b'-') {
-                    j += 1;
-                }
-                if j < b.len() && b[j].is_ascii_digit() {
-                    i = j;
-                    while i < b.len() && b[i].is_ascii_digit() {
-                        i += 1;
-                    }
-                }
-            }
-            let v = text[start..i].parse().unwrap_or(f64::NAN);
-            out.push((Tok::Num(v), start, i));
-        } else if c.is_ascii_alphabetic() || c == b'_' || c == b'$' {
-            while i < b.len() && (b[i].is_ascii_alphanumeric() || b[i] == b'_' || b[i] == b'$') {
-                i += 1;
-            }
-            out.push((Tok::Word(text[start..i].to_string()), start, i));
-        } else if c == b'"' {
-            i += 1;
-            while i < b.len() && b[i] != b'"' {
-                i += if b[i] == b'\\' { 2 } else { 1 };
-            }
-            i = (i + 1).min(b.len());
-            out.push((Tok::Str(text[start..i].to_string()), start, i));
-        } else {
-            let two = text.get(i..i + 2).unwrap_or("");
-            let n = if matches!(two, "<=" | ">=" | "==" | "!=" | "&&" | "||") {
-                2
-            } else {
-                1
-            };
-            let n = text[i..]
-                .chars()
-                .next()
-                .map_or(n, |ch| if n == 1 { ch.len_utf8() } else { n });
-            i += n;
-            out.push((Tok::Punct(text[start..i].to_string()), start, i));
+impl<'a> Lexed<'a> {
+    pub(super) fn new(text: &'a str) -> Self {
+        Lexed {
+            text,
+            tokens: tokens(text),
         }
     }
-    out
-}
 
-/// Whether `toks[k]` is a unary minus directly in front of a number.
-fn negated_number(toks: &[(Tok, usize, usize)], k: usize) -> bool {
-    let is_minus = matches!(toks.get(k), Some((Tok::Punct(p), ..)) if p == "-");
-    let then_number = matches!(toks.get(k + 1), Some((Tok::Num(_), ..)));
-    let unary = match k.checked_sub(1).and_then(|p| toks.get(p)) {
-        None => true,
-        Some((Tok::Punct(p), ..)) => !matches!(p.as_str(), ")" | "]" | "}"),
-        Some(_) => false,
-    };
-    is_minus && then_number && unary
-}
-
-fn describe(t: Option<&(Tok, usize, usize)>) -> String {
-    match t {
-        None => "the end of the file".into(),
-        Some((Tok::Num(_), ..)) => "a number".into(),
-        Some((Tok::Word(w) | Tok::Str(w) | Tok::Punct(w), ..)) => format!("`{w}`"),
+    fn get(&self, k: usize) -> Option<&Token> {
+        self.tokens.get(k)
     }
+
+    fn is_number(&self, k: usize) -> bool {
+        matches!(self.get(k), Some(t) if matches!(t.kind, TokenKind::Number(_)))
+    }
+
+    /// Whether token `k` is a unary minus directly in front of a number.
+    pub(super) fn negated_number(&self, k: usize) -> bool {
+        let is_minus = self
+            .get(k)
+            .is_some_and(|t| t.kind == TokenKind::Punct && t.text(self.text) == "-");
+        let unary = match k.checked_sub(1).and_then(|p| self.get(p)) {
+            None => true,
+            Some(t) => match t.kind {
+                TokenKind::Punct => !matches!(t.text(self.text), ")" | "]" | "}"),
+                TokenKind::Path => true,
+                TokenKind::Number(_) | TokenKind::Word | TokenKind::Str => false,
+            },
+        };
+        is_minus && self.is_number(k + 1) && unary
+    }
+
+    /// How a diagnostic names token `k`.
+    fn describe(&self, k: usize) -> String {
+        match self.get(k) {
+            None => "the end of the file".into(),
+            Some(t) if matches!(t.kind, TokenKind::Number(_)) => "a number".into(),
+            Some(t) => format!("`{}`", t.text(self.text)),
+        }
+    }
+
+    /// The span of token `k` in `file`, or an empty one at the end.
+    fn span(&self, k: usize, file: FileId) -> Span {
+        let len = self.text.len();
+        self.get(k).map_or(Span::new(file, len, len), |t| {
+            Span::new(file, t.start, t.end)
+        })
+    }
+}
+
+/// Whether two tokens match: any number matches any number, anything else itself.
+fn same(model: &Lexed<'_>, i: usize, variant: &Lexed<'_>, j: usize) -> bool {
+    match (model.get(i), variant.get(j)) {
+        (Some(a), Some(b)) => match (a.kind, b.kind) {
+            (TokenKind::Number(_), TokenKind::Number(_)) => true,
+            (x, y) => x == y && a.text(model.text) == b.text(variant.text),
+        },
+        _ => false,
+    }
+}
+
+/// The variant's number at each number of the model: the model number's offset → the
+/// variant's value and the offset where the variant writes it.
+type Numbers = HashMap<usize, (f64, usize)>;
+
+/// The value of the number token `k` (a negated number's when `negated`) with its offset.
+fn number_at(lexed: &Lexed<'_>, k: usize, negated: bool) -> Option<(f64, usize)> {
+    let t = lexed.get(k)?;
+    let TokenKind::Number(v) = t.kind else {
+        return None;
+    };
+    Some((if negated { -v } else { v }, t.start))
+}
+
+/// Matches the variant's tokens to the model's; on the first place where anything but a
+/// number (or a sign in front of one) differs, returns the indices of the two tokens there.
+fn match_tokens(model: &Lexed<'_>, variant: &Lexed<'_>) -> Result<Numbers, (usize, usize)> {
+    let mut numbers = Numbers::new();
+    let (mut i, mut j) = (0, 0);
+    while i < model.tokens.len() || j < variant.tokens.len() {
+        // A sign may appear or disappear in front of a number: `0` → `-22.5`.
+        if let (Some(at), true) = (model.get(i), variant.negated_number(j))
+            && model.is_number(i)
+            && let Some(value) = number_at(variant, j + 1, true)
+        {
+            numbers.insert(at.start, value);
+            (i, j) = (i + 1, j + 2);
+            continue;
+        }
+        if model.negated_number(i)
+            && let Some(at) = model.get(i + 1)
+            && let Some(value) = number_at(variant, j, true)
+        {
+            numbers.insert(at.start, value);
+            (i, j) = (i + 2, j + 1);
+            continue;
+        }
+        if !same(model, i, variant, j) {
+            return Err((i, j));
+        }
+        if let (Some(at), Some(value)) = (model.get(i), number_at(variant, j, false)) {
+            numbers.insert(at.start, value);
+        }
+        (i, j) = (i + 1, j + 1);
+    }
+    Ok(numbers)
 }
 
 /// Matches the variant file `path` against the model's main file `base`.
@@ -130,100 +155,30 @@ pub fn load_variation(
         || format!("variation{file}"),
         |s| s.to_string_lossy().into_owned(),
     );
-    let ours = tokens(sources.text(base));
-    let theirs = tokens(sources.text(file));
-    let mut at_number: HashMap<usize, f64> = HashMap::new();
-    // Offsets in the variant of each model number, for pointing at them.
-    let mut variant_offset: HashMap<usize, usize> = HashMap::new();
-    let (mut i, mut j) = (0, 0);
-    while i < ours.len() || j < theirs.len() {
-        let (a, b) = (ours.get(i), theirs.get(j));
-        // A sign may appear or disappear in front of a number: `0` → `-22.5`.
-        if let (Some((Tok::Num(_), s, _)), true) = (a, negated_number(&theirs, j))
-            && let Some((Tok::Num(v), vs, _)) = theirs.get(j + 1)
-        {
-            at_number.insert(*s, -v);
-            variant_offset.insert(*s, *vs);
-            (i, j) = (i + 1, j + 2);
-            continue;
-        }
-        if let (true, Some((Tok::Num(v), vs, _))) = (negated_number(&ours, i), b)
-            && let Some((Tok::Num(_), s, _)) = ours.get(i + 1)
-        {
-            at_number.insert(*s, -v);
-            variant_offset.insert(*s, *vs);
-            (i, j) = (i + 2, j + 1);
-            continue;
-        }
-        let same = match (a, b) {
-            (Some((Tok::Num(_), ..)), Some((Tok::Num(_), ..))) => true,
-            (Some((x, ..)), Some((y, ..))) => x == y,
-            _ => false,
+    let ours = Lexed::new(sources.text(base));
+    let theirs = Lexed::new(sources.text(file));
+    let numbers = match_tokens(&ours, &theirs).map_err(|(i, j)| {
+        let model = At {
+            file: base,
+            lexed: &ours,
+            token: i,
         };
-        if !same {
-            let span_of = |t: Option<&(Tok, usize, usize)>, f: FileId, len: usize| {
-                t.map_or(Span::new(f, len, len), |&(_, s, e)| Span::new(f, s, e))
-            };
-            let here = span_of(b, file, sources.text(file).len());
-            let there = span_of(a, base, sources.text(base).len());
-            return Err(Box::new(
-                Diagnostic::error(
-                    "E0601",
-                    format!("variation `{name}` is not the same program with other numbers"),
-                )
-                .at(here, format!("the variation has {} here", describe(b)))
-                .with_secondary(there, format!("the model has {} here", describe(a)))
-                .with_note(
-                    "a variation may change numbers only; statements, names and structure must match the model",
-                ),
-            ));
-        }
-        if let (Some((Tok::Num(_), s, _)), Some((Tok::Num(v), vs, _))) = (a, b) {
-            at_number.insert(*s, *v);
-            variant_offset.insert(*s, *vs);
-        }
-        (i, j) = (i + 1, j + 1);
-    }
-    for f in &model.frozen {
-        if f.span.file != base {
-            continue;
-        }
-        if let Some(&v) = at_number.get(&(f.span.start as usize))
-            && v != f.value
-        {
-            let why = match &f.reason {
-                FreezeReason::Structural(w) => format!("it decides structure ({w})"),
-                FreezeReason::Product(_) => {
-                    "it multiplies another parameter, so it is held constant".into()
-                }
-            };
-            let offset = variant_offset
-                .get(&(f.span.start as usize))
-                .copied()
-                .unwrap_or(0);
-            return Err(Box::new(
-                Diagnostic::error(
-                    "E0602",
-                    format!("variation `{name}` changes a number that must stay fixed"),
-                )
-                .at(
-                    Span::new(file, offset, offset + 1),
-                    format!("this is {v} here"),
-                )
-                .with_secondary(f.span, format!("but {} in the model", f.text))
-                .with_note(format!("this number is not a parameter: {why}")),
-            ));
-        }
-    }
+        let variant = At {
+            file,
+            lexed: &theirs,
+            token: j,
+        };
+        mismatch(sources, &name, &model, &variant)
+    })?;
+    check_frozen(model, base, file, &name, &numbers)?;
     let values = model
         .slots
         .iter()
         .map(|s| {
             if s.span.file == base {
-                at_number
+                numbers
                     .get(&(s.span.start as usize))
-                    .copied()
-                    .unwrap_or(s.value)
+                    .map_or(s.value, |&(v, _)| v)
             } else {
                 s.value
             }
@@ -232,21 +187,126 @@ pub fn load_variation(
     Ok(Variation { name, values })
 }
 
+/// Where one side of the comparison (the model or the variant) stops matching the other.
+struct At<'s, 'a> {
+    file: FileId,
+    lexed: &'s Lexed<'a>,
+    /// The index of the token that differs (the number of tokens: the end of the file).
+    token: usize,
+}
+
+impl At<'_, '_> {
+    fn span(&self) -> Span {
+        self.lexed.span(self.token, self.file)
+    }
+
+    fn describe(&self) -> String {
+        self.lexed.describe(self.token)
+    }
+
+    /// The side as the diff of lines sees it.
+    fn diff_side<'d>(&'d self, sources: &'d SourceMap) -> diff::Side<'d> {
+        let at = self
+            .lexed
+            .get(self.token)
+            .map_or(self.lexed.text.len(), |t| t.start);
+        diff::Side {
+            path: sources.path(self.file),
+            lexed: self.lexed,
+            at,
+        }
+    }
+}
+
+/// The diagnostic for a variant that stops matching the model, with the differing lines
+/// as a diff.
+fn mismatch(
+    sources: &SourceMap,
+    name: &str,
+    model: &At<'_, '_>,
+    variant: &At<'_, '_>,
+) -> Box<Diagnostic> {
+    let mut diag = Diagnostic::error(
+        "E0601",
+        format!("variation `{name}` is not the same program with other numbers"),
+    )
+    .at(
+        variant.span(),
+        format!("the variation has {} here", variant.describe()),
+    )
+    .with_secondary(
+        model.span(),
+        format!("the model has {} here", model.describe()),
+    )
+    .with_note(
+        "a variation may change numbers only; statements, names and structure must match the model",
+    );
+    let sides = (model.diff_side(sources), variant.diff_side(sources));
+    if let Some(lines) = diff::differing_lines(&sides.0, &sides.1) {
+        diag = diag.with_note(lines);
+    }
+    Box::new(diag)
+}
+
+/// Refuses a variant that changes a frozen literal (one that decides structure).
+fn check_frozen(
+    model: &Model,
+    base: FileId,
+    file: FileId,
+    name: &str,
+    numbers: &Numbers,
+) -> DResult<()> {
+    for f in &model.frozen {
+        if f.span.file != base {
+            continue;
+        }
+        let Some(&(v, offset)) = numbers.get(&(f.span.start as usize)) else {
+            continue;
+        };
+        if v == f.value {
+            continue;
+        }
+        let why = match &f.reason {
+            FreezeReason::Structural(w) => format!("it decides structure ({w})"),
+            FreezeReason::Product(_) => {
+                "it multiplies another parameter, so it is held constant".into()
+            }
+        };
+        return Err(Box::new(
+            Diagnostic::error(
+                "E0602",
+                format!("variation `{name}` changes a number that must stay fixed"),
+            )
+            .at(
+                Span::new(file, offset, offset + 1),
+                format!("this is {v} here"),
+            )
+            .with_secondary(f.span, format!("but {} in the model", f.text))
+            .with_note(format!("this number is not a parameter: {why}")),
+        ));
+    }
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
     #[test]
     fn tokens_skip_comments_and_keep_numbers() {
-        let t = tokens("a = -1.5e2; // x\n/* y */ cube([a, .5]);");
+        let text = "a = -1.5e2; // x\n/* y */ cube([a, .5]);";
+        let t = tokens(text);
         let nums: Vec<f64> = t
             .iter()
-            .filter_map(|(k, ..)| if let Tok::Num(v) = k { Some(*v) } else { None })
+            .filter_map(|k| {
+                if let TokenKind::Number(v) = k.kind {
+                    Some(v)
+                } else {
+                    None
+                }
+            })
             .collect();
         assert_eq!(nums, vec![150.0, 0.5]);
-        assert!(
-            t.iter()
-                .all(|(k, ..)| !matches!(k, Tok::Punct(p) if p == "/"))
-        );
+        assert!(t.iter().all(|k| k.text(text) != "/"));
     }
 }

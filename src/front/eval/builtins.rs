@@ -92,52 +92,29 @@ impl Eval<'_> {
         for a in args {
             vals.push(self.expr(&a.value, scope)?);
         }
-        let num = |i: usize| vals.get(i).and_then(Value::as_num).cloned();
-        let unary = |f: fn(f64) -> f64| -> Value {
-            num(0).map_or(Value::Undef, |n| Value::Num(n.opaque(f(n.value))))
-        };
-        let v = match name {
-            "sqrt" => unary(f64::sqrt),
-            "abs" => unary(f64::abs),
-            "floor" => unary(f64::floor),
-            "ceil" => unary(f64::ceil),
-            "round" => unary(f64::round),
-            "exp" => unary(f64::exp),
-            "ln" => unary(f64::ln),
-            "log" => match (num(0), num(1)) {
-                (Some(b), Some(x)) => {
-                    Value::Num(Num::opaque_of(&[&b, &x], x.value.ln() / b.value.ln()))
-                }
-                (Some(x), None) => Value::Num(x.opaque(x.value.log10())),
-                _ => Value::Undef,
-            },
-            "sign" => unary(|x| {
-                if x > 0.0 {
-                    1.0
-                } else if x < 0.0 {
-                    -1.0
-                } else {
-                    0.0
-                }
-            }),
-            "sin" => unary(sin_degrees),
-            "cos" => unary(cos_degrees),
-            "tan" => unary(|x| sin_degrees(x) / cos_degrees(x)),
-            "asin" => unary(|x| x.asin().to_degrees()),
-            "acos" => unary(|x| x.acos().to_degrees()),
-            "atan" => unary(|x| x.atan().to_degrees()),
-            "atan2" => match (num(0), num(1)) {
-                (Some(y), Some(x)) => Value::Num(Num::opaque_of(
-                    &[&y, &x],
-                    y.value.atan2(x.value).to_degrees(),
-                )),
-                _ => Value::Undef,
-            },
-            "pow" => match (num(0), num(1)) {
-                (Some(b), Some(e)) => Value::Num(Num::opaque_of(&[&b, &e], b.value.powf(e.value))),
-                _ => Value::Undef,
-            },
-            "min" | "max" => min_max(name == "max", &vals),
+        if let Some(v) = math_function(name, &vals) {
+            return Ok(Some(v));
+        }
+        if let Some(v) = self.value_function(name, &vals) {
+            return Ok(Some(v));
+        }
+        if matches!(name, "rands" | "search") {
+            return Err(Box::new(
+                Diagnostic::error("E0201", format!("`{name}` is not supported yet"))
+                    .at(span, "unsupported built-in function")
+                    .with_note(if name == "rands" {
+                        "random numbers make the model differ from run to run; write the numbers out"
+                    } else {
+                        "`search` is not implemented in reparamc's evaluator"
+                    }),
+            ));
+        }
+        Ok(None)
+    }
+
+    /// The built-in functions of lists, text and types; `None` for any other name.
+    fn value_function(&mut self, name: &str, vals: &[Value]) -> Option<Value> {
+        Some(match name {
             "len" => match vals.first() {
                 Some(Value::Vector(v)) => Value::constant(v.len() as f64),
                 Some(Value::Str(s)) => Value::constant(s.chars().count() as f64),
@@ -145,7 +122,7 @@ impl Eval<'_> {
             },
             "concat" => {
                 let mut out = Vec::new();
-                for v in &vals {
+                for v in vals {
                     match v {
                         Value::Vector(items) => out.extend(items.iter().cloned()),
                         other => out.push(other.clone()),
@@ -155,7 +132,7 @@ impl Eval<'_> {
             }
             "str" => {
                 let mut s = String::new();
-                for v in &vals {
+                for v in vals {
                     self.freeze_value(v, "text made with `str`");
                     s.push_str(&v.to_string());
                 }
@@ -163,7 +140,7 @@ impl Eval<'_> {
             }
             "chr" => {
                 let mut s = String::new();
-                for v in &vals {
+                for v in vals {
                     if let Value::Num(n) = v {
                         s.extend(char::from_u32(n.value as u32));
                     }
@@ -184,8 +161,8 @@ impl Eval<'_> {
                 }
                 _ => Value::Undef,
             },
-            "cross" => cross(self, &vals),
-            "lookup" => lookup(&vals),
+            "cross" => cross(self, vals),
+            "lookup" => lookup(vals),
             "is_undef" => Value::Bool(matches!(vals.first(), Some(Value::Undef) | None)),
             "is_num" => {
                 Value::Bool(matches!(vals.first(), Some(Value::Num(n)) if !n.value.is_nan()))
@@ -200,21 +177,61 @@ impl Eval<'_> {
                 Value::constant(0.0),
             ])),
             "version_num" => Value::constant(20210100.0),
-            "rands" | "search" => {
-                return Err(Box::new(
-                    Diagnostic::error("E0201", format!("`{name}` is not supported yet"))
-                        .at(span, "unsupported built-in function")
-                        .with_note(if name == "rands" {
-                            "random numbers make the model differ from run to run; write the numbers out"
-                        } else {
-                            "`search` is not implemented in reparamc's evaluator"
-                        }),
-                ));
-            }
-            _ => return Ok(None),
-        };
-        Ok(Some(v))
+            _ => return None,
+        })
     }
+}
+
+/// The built-in functions of numbers; `None` for any other name.
+fn math_function(name: &str, vals: &[Value]) -> Option<Value> {
+    let num = |i: usize| vals.get(i).and_then(Value::as_num).cloned();
+    let unary = |f: fn(f64) -> f64| -> Value {
+        num(0).map_or(Value::Undef, |n| Value::Num(n.opaque(f(n.value))))
+    };
+    Some(match name {
+        "sqrt" => unary(f64::sqrt),
+        "abs" => unary(f64::abs),
+        "floor" => unary(f64::floor),
+        "ceil" => unary(f64::ceil),
+        "round" => unary(f64::round),
+        "exp" => unary(f64::exp),
+        "ln" => unary(f64::ln),
+        "log" => match (num(0), num(1)) {
+            (Some(b), Some(x)) => {
+                Value::Num(Num::opaque_of(&[&b, &x], x.value.ln() / b.value.ln()))
+            }
+            (Some(x), None) => Value::Num(x.opaque(x.value.log10())),
+            _ => Value::Undef,
+        },
+        "sign" => unary(|x| {
+            if x > 0.0 {
+                1.0
+            } else if x < 0.0 {
+                -1.0
+            } else {
+                0.0
+            }
+        }),
+        "sin" => unary(sin_degrees),
+        "cos" => unary(cos_degrees),
+        "tan" => unary(|x| sin_degrees(x) / cos_degrees(x)),
+        "asin" => unary(|x| x.asin().to_degrees()),
+        "acos" => unary(|x| x.acos().to_degrees()),
+        "atan" => unary(|x| x.atan().to_degrees()),
+        "atan2" => match (num(0), num(1)) {
+            (Some(y), Some(x)) => Value::Num(Num::opaque_of(
+                &[&y, &x],
+                y.value.atan2(x.value).to_degrees(),
+            )),
+            _ => Value::Undef,
+        },
+        "pow" => match (num(0), num(1)) {
+            (Some(b), Some(e)) => Value::Num(Num::opaque_of(&[&b, &e], b.value.powf(e.value))),
+            _ => Value::Undef,
+        },
+        "min" | "max" => min_max(name == "max", vals),
+        _ => return None,
+    })
 }
 
 fn is_builtin_function(name: &str) -> bool {

@@ -356,10 +356,10 @@ impl Eval<'_> {
 
     fn binary(&mut self, op: BinaryOp, a: &Expr, b: &Expr, scope: &Rc<Scope>) -> DResult<Value> {
         if matches!(op, BinaryOp::And | BinaryOp::Or) {
+            // Short-circuit: `b` is evaluated only when `a` does not decide.
             let av = self.expr(a, scope)?;
-            let at = self.condition(&av, "a condition");
-            if (op == BinaryOp::And) != at {
-                return Ok(Value::Bool(at));
+            if let Some(decided) = self.decided_by_left(op, &av) {
+                return Ok(decided);
             }
             let bv = self.expr(b, scope)?;
             return Ok(Value::Bool(self.condition(&bv, "a condition")));
@@ -402,8 +402,19 @@ impl Eval<'_> {
                 Value::Bool(values_equal(a, b) == (op == Eq))
             }
             Lt | Le | Gt | Ge => self.compare(op, a, b),
-            And | Or => unreachable!("short-circuit operators are handled in `binary`"),
+            // Both operands are values already (`binary` short-circuits before evaluating
+            // the right one): the same result.
+            And | Or => match self.decided_by_left(op, a) {
+                Some(decided) => decided,
+                None => Value::Bool(self.condition(b, "a condition")),
+            },
         }
+    }
+
+    /// For `&&` and `||`: the result when the left operand `a` decides it.
+    fn decided_by_left(&mut self, op: BinaryOp, a: &Value) -> Option<Value> {
+        let at = self.condition(a, "a condition");
+        ((op == BinaryOp::And) != at).then_some(Value::Bool(at))
     }
 
     fn compare(&mut self, op: BinaryOp, a: &Value, b: &Value) -> Value {

@@ -14,6 +14,7 @@ use crate::front::diag::{DResult, Diagnostic};
 use crate::ir::part::Misalignment;
 use crate::ir::{CsgNode, Num, Part, Primitive, Transform};
 use crate::span::Span;
+use crate::tolerance::ROTATION_SNAP;
 use std::collections::HashMap;
 use std::rc::Rc;
 
@@ -35,7 +36,7 @@ impl BuiltinArgs {
 /// Snaps rotation entries that are within rounding of 0 or ±1 to exactly that.
 fn snap(v: f64) -> f64 {
     for t in [0.0, 1.0, -1.0] {
-        if (v - t).abs() < 1e-12 {
+        if (v - t).abs() < ROTATION_SNAP {
             return t;
         }
     }

@@ -6,6 +6,7 @@
 
 use crate::front::ast::{Expr, Param};
 use crate::ir::Num;
+use crate::tolerance::RANGE_STEP_SLACK;
 use std::fmt;
 use std::rc::Rc;
 
@@ -42,7 +43,7 @@ impl RangeValue {
             return 0;
         }
         // Float-to-int casts saturate, so a huge range is capped, never wrapped.
-        let steps = ((e - s) / st + 1e-9).floor();
+        let steps = ((e - s) / st + RANGE_STEP_SLACK).floor();
         if steps >= 10_000_000.0 {
             return 10_000_000;
         }

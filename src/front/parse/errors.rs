@@ -7,7 +7,7 @@
 //! `;` after assignment"), the bracket still open, the line a missing `;` belongs to.
 
 use super::scan::{Context, Scanned, context_at};
-use super::{OpenScadParser, Rule, SYNTAX_ERROR, point, too_deep};
+use super::{OpenScadParser, Rule, SYNTAX_ERROR, point, precedence, too_deep};
 use crate::front::ast::Comment;
 use crate::front::diag::Diagnostic;
 use crate::span::{FileId, Span};
@@ -177,31 +177,9 @@ impl Expected {
             | Rule::include_stmt
             | Rule::include_kind
             | Rule::kw_module => self.statement = true,
-            Rule::op_or
-            | Rule::op_and
-            | Rule::op_eq
-            | Rule::op_ne
-            | Rule::op_le
-            | Rule::op_ge
-            | Rule::op_lt
-            | Rule::op_gt
-            | Rule::op_add
-            | Rule::op_sub
-            | Rule::op_mul
-            | Rule::op_div
-            | Rule::op_mod
-            | Rule::op_pow => self.operator = true,
-            Rule::expr
-            | Rule::ternary
-            | Rule::or_expr
-            | Rule::and_expr
-            | Rule::eq_expr
-            | Rule::rel_expr
-            | Rule::add_expr
-            | Rule::mul_expr
-            | Rule::unary
-            | Rule::postfix
-            | Rule::prefix_op
+            _ if precedence::binary_op(rule).is_some() => self.operator = true,
+            _ if precedence::is_level(rule) => self.expression = true,
+            Rule::prefix_op
             | Rule::paren
             | Rule::bracket
             | Rule::lit_true

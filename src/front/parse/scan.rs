@@ -1,10 +1,23 @@
-//! The pre-scan: one linear pass over the text before pest runs.
+//! The lexer: OpenSCAD's tokens, in one linear pass over the text.
 //!
-//! It knows just enough of OpenSCAD's lexer (strings, comments, `include <...>` paths) to
-//! collect every comment in source order, to reject unterminated strings and block
-//! comments with a precise diagnostic (pest alone would report a confusing position), to
-//! stop brackets nested deeper than [`MAX_DEPTH`] before pest recurses into them. Run up
-//! to an error position, it tells the error messages where that position sits.
+//! pest is scannerless (the grammar reads characters), so this is not a fast path for it:
+//! it is the one place that knows where tokens, comments and blanks are. Three passes use
+//! it:
+//!
+//! - the pre-scan, before pest runs ([`scan`]): it collects every comment in source order
+//!   (the grammar skips them), rejects unterminated strings, block comments and `include`
+//!   paths with a precise diagnostic (pest alone would report a confusing position), and
+//!   stops brackets nested deeper than [`MAX_DEPTH`] before pest recurses into them;
+//! - the error messages ([`context_at`]): run up to an error position, it tells which
+//!   bracket is open there and where the statement being written starts;
+//! - the token stream ([`tokens`]): the same pass, recording each token, for comparing two
+//!   texts token by token (variant files against their model). It never fails: what the
+//!   pre-scan rejects runs to the end of the text instead.
+//!
+//! Tokens are read as the grammar reads them: a number is `1`, `1.5`, `.5`, `1e-3`; a word
+//! starting with a digit is a name when it is longer than any number reading of it (`2d`);
+//! `<=`, `>=`, `==`, `!=`, `&&` and `||` are one token; blanks are the grammar's
+//! (` `, tab, CR, LF and the no-break space).
 
 use super::{MAX_DEPTH, SYNTAX_ERROR, too_deep};
 use crate::front::ast::Comment;
@@ -24,6 +37,49 @@ pub(super) fn scan(file: FileId, text: &str) -> DResult<Scanned> {
     Ok(Scanned {
         comments: scanner.comments,
     })
+}
+
+/// One token of OpenSCAD text: what it is and its byte range. Comments and blanks are not
+/// tokens.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Token {
+    pub kind: TokenKind,
+    pub start: usize,
+    pub end: usize,
+}
+
+impl Token {
+    /// The token's text in the `text` it was read from.
+    pub fn text<'t>(&self, text: &'t str) -> &'t str {
+        text.get(self.start..self.end).unwrap_or("")
+    }
+}
+
+/// What a [`Token`] is.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum TokenKind {
+    /// A number literal, with its value.
+    Number(f64),
+    /// A name or a keyword.
+    Word,
+    /// A string literal, quotes included.
+    Str,
+    /// The `<path>` of an `include` or `use`.
+    Path,
+    /// An operator or punctuation mark (two characters for `<=`, `>=`, `==`, `!=`, `&&`,
+    /// `||`), or a character that has no place outside strings and comments.
+    Punct,
+}
+
+/// The tokens of `text`, in order, for comparing texts token by token. Never fails: an
+/// unterminated string or block comment runs to the end of the text, an unterminated
+/// `include` path is read as ordinary tokens, and nesting is not limited.
+pub fn tokens(text: &str) -> Vec<Token> {
+    let mut scanner = Scanner::new(0, text, text.len());
+    scanner.tokens = Some(Vec::new());
+    // In token mode every error is recovered from where it is found (see above).
+    let _ = scanner.run();
+    scanner.tokens.unwrap_or_default()
 }
 
 /// Where a byte offset sits, for the wording of a syntax error there.
@@ -65,10 +121,13 @@ struct Scanner<'a> {
     /// Per level of `{ }` (the file is the first): where its current statement starts,
     /// `None` between statements.
     statements: Vec<Option<usize>>,
-    /// The last significant ASCII character before `pos` (`;` at the start). An
+    /// The first character of the last token before `pos` (`;` at the start). An
     /// `include`/`use` word starts an include only after `;`, `{`, `}` or `)`, outside
     /// brackets: anywhere else it is a name.
     previous: u8,
+    /// The tokens read, when [`tokens`] runs the scanner (which then recovers from every
+    /// error instead of reporting it).
+    tokens: Option<Vec<Token>>,
 }
 
 impl<'a> Scanner<'a> {
@@ -83,6 +142,20 @@ impl<'a> Scanner<'a> {
             open: Vec::new(),
             statements: vec![None],
             previous: b';',
+            tokens: None,
+        }
+    }
+
+    /// Whether the scanner records tokens and recovers from errors (see [`tokens`]).
+    fn lenient(&self) -> bool {
+        self.tokens.is_some()
+    }
+
+    /// Records the token `start..self.pos` when recording.
+    fn push(&mut self, kind: TokenKind, start: usize) {
+        let end = self.pos;
+        if let Some(tokens) = &mut self.tokens {
+            tokens.push(Token { kind, start, end });
         }
     }
 
@@ -102,7 +175,7 @@ impl<'a> Scanner<'a> {
     fn token(&mut self, byte: u8) -> DResult<()> {
         // Non-ASCII bytes are either a no-break space (a blank) or a syntax error.
         if !byte.is_ascii() {
-            self.pos += 1;
+            self.non_ascii();
             return Ok(());
         }
         if !self.in_expression() {
@@ -116,14 +189,42 @@ impl<'a> Scanner<'a> {
             b'"' => self.string()?,
             b'(' | b'[' | b'{' => self.open_bracket(byte)?,
             b')' | b']' | b'}' => self.close_bracket(),
-            b'$' | b'_' | b'0'..=b'9' | b'a'..=b'z' | b'A'..=b'Z' => self.word(previous)?,
+            b'0'..=b'9' => self.number_or_word(),
+            b'.' if self.peek(1).is_some_and(|b| b.is_ascii_digit()) => self.number(),
+            b'$' | b'_' | b'a'..=b'z' | b'A'..=b'Z' => self.word(previous)?,
             b';' => {
                 self.end_statement();
-                self.pos += 1;
+                self.punct(1);
             }
-            _ => self.pos += 1,
+            _ => {
+                let pair = self.bytes.get(self.pos..self.pos + 2);
+                let two = matches!(pair, Some(b"<=" | b">=" | b"==" | b"!=" | b"&&" | b"||"));
+                self.punct(if two { 2 } else { 1 });
+            }
         }
         Ok(())
+    }
+
+    /// An operator or punctuation mark `len` bytes long.
+    fn punct(&mut self, len: usize) {
+        let start = self.pos;
+        self.pos += len;
+        self.push(TokenKind::Punct, start);
+    }
+
+    /// A byte that is not ASCII: the pre-scan steps over it; the token stream skips a
+    /// no-break space and makes any other character a token of its own.
+    fn non_ascii(&mut self) {
+        if !self.lenient() {
+            self.pos += 1;
+            return;
+        }
+        let start = self.pos;
+        let c = self.text.get(start..).and_then(|t| t.chars().next());
+        self.pos += c.map_or(1, char::len_utf8);
+        if c != Some('\u{a0}') {
+            self.push(TokenKind::Punct, start);
+        }
     }
 
     /// Whether `pos` is inside `( )` or `[ ]`, where statements do not start or end.
@@ -158,6 +259,10 @@ impl<'a> Scanner<'a> {
         let start = self.pos;
         let body = start + 2;
         let Some(close) = self.text[body..].find("*/").map(|i| body + i) else {
+            if self.lenient() {
+                self.pos = self.bytes.len();
+                return Ok(());
+            }
             return Err(Box::new(
                 Diagnostic::error(SYNTAX_ERROR, "unterminated block comment")
                     .at(
@@ -173,6 +278,10 @@ impl<'a> Scanner<'a> {
     }
 
     fn push_comment(&mut self, start: usize, end: usize, inner: &str, block: bool) {
+        if self.lenient() {
+            // The token stream has no use for comments.
+            return;
+        }
         self.comments.push(Comment {
             span: Span::new(self.file, start, end),
             text: inner.trim().to_string(),
@@ -186,13 +295,15 @@ impl<'a> Scanner<'a> {
         let mut at = start + 1;
         loop {
             match self.bytes.get(at) {
+                None if self.lenient() => break,
                 None => return Err(self.unterminated_string(start)),
                 Some(b'\\') => at += 2,
                 Some(b'"') => break,
                 Some(_) => at += 1,
             }
         }
-        self.pos = at + 1;
+        self.pos = (at + 1).min(self.bytes.len());
+        self.push(TokenKind::Str, start);
         Ok(())
     }
 
@@ -209,13 +320,13 @@ impl<'a> Scanner<'a> {
 
     fn open_bracket(&mut self, byte: u8) -> DResult<()> {
         self.open.push((self.pos, byte));
-        if self.open.len() > MAX_DEPTH {
+        if self.open.len() > MAX_DEPTH && !self.lenient() {
             return Err(too_deep(self.file, self.text, self.pos));
         }
         if byte == b'{' {
             self.statements.push(None);
         }
-        self.pos += 1;
+        self.punct(1);
         Ok(())
     }
 
@@ -230,17 +341,85 @@ impl<'a> Scanner<'a> {
             // A block ends the statement it belongs to (an `else` may start another).
             self.end_statement();
         }
-        self.pos += 1;
+        self.punct(1);
+    }
+
+    /// A number, or a name that starts with a digit: the grammar reads a name when the
+    /// text is longer than any number reading of it (`2d`, `1e5x`), unless the digits go
+    /// on as a number would (`1.`, `1e-`, `1e+`), which is then a number.
+    fn number_or_word(&mut self) {
+        let start = self.pos;
+        let digits = self.digits(start);
+        let number_goes_on = match self.bytes.get(digits) {
+            Some(b'.') => true,
+            Some(b'e' | b'E') => {
+                matches!(self.bytes.get(digits + 1), Some(b'+' | b'-'))
+                    && self.bytes.get(digits + 2).is_some_and(u8::is_ascii_digit)
+            }
+            _ => false,
+        };
+        let number_end = self.number_end(start);
+        let name_follows = self
+            .bytes
+            .get(number_end)
+            .is_some_and(|&b| b.is_ascii_alphanumeric() || b == b'_');
+        if number_goes_on || !name_follows {
+            self.number();
+        } else {
+            self.pos = self.word_end(start);
+            self.push(TokenKind::Word, start);
+        }
+    }
+
+    /// A number literal: `1`, `1.`, `1.5`, `.5`, each with an optional exponent.
+    fn number(&mut self) {
+        let start = self.pos;
+        self.pos = self.number_end(start);
+        let text = &self.text[start..self.pos];
+        let value = text.parse().unwrap_or(f64::NAN);
+        self.push(TokenKind::Number(value), start);
+    }
+
+    /// The end of the digits from `at` on.
+    fn digits(&self, mut at: usize) -> usize {
+        while self.bytes.get(at).is_some_and(u8::is_ascii_digit) {
+            at += 1;
+        }
+        at
+    }
+
+    /// The end of the number reading from `start`: digits, a fraction, an exponent (only
+    /// when digits follow its `e` and sign).
+    fn number_end(&self, start: usize) -> usize {
+        let mut at = self.digits(start);
+        if self.bytes.get(at) == Some(&b'.') {
+            at = self.digits(at + 1);
+        }
+        if matches!(self.bytes.get(at), Some(b'e' | b'E')) {
+            let sign = usize::from(matches!(self.bytes.get(at + 1), Some(b'+' | b'-')));
+            let exponent = self.digits(at + 1 + sign);
+            if exponent > at + 1 + sign {
+                at = exponent;
+            }
+        }
+        at
+    }
+
+    /// The end of the word from `start`: letters, digits, `_` and `$`.
+    fn word_end(&self, mut at: usize) -> usize {
+        while matches!(self.bytes.get(at), Some(b) if b.is_ascii_alphanumeric() || *b == b'_' || *b == b'$')
+        {
+            at += 1;
+        }
+        at
     }
 
     /// A name, keyword or number; `include <...>` and `use <...>` skip their path, which
     /// may contain anything but `>`, tabs and line breaks (even `//`).
     fn word(&mut self, previous: u8) -> DResult<()> {
         let start = self.pos;
-        while matches!(self.bytes.get(self.pos), Some(b) if b.is_ascii_alphanumeric() || *b == b'_' || *b == b'$')
-        {
-            self.pos += 1;
-        }
+        self.pos = self.word_end(start);
+        self.push(TokenKind::Word, start);
         let word = &self.text[start..self.pos];
         let may_include = !self.in_expression() && matches!(previous, b';' | b'{' | b'}' | b')');
         if may_include && (word == "include" || word == "use") {
@@ -263,6 +442,10 @@ impl<'a> Scanner<'a> {
             at += 1;
         }
         if self.bytes.get(at) != Some(&b'>') {
+            if self.lenient() {
+                // Read on as ordinary tokens, from the `<`.
+                return Ok(());
+            }
             let keyword = &self.text[keyword_start..self.pos];
             return Err(Box::new(
                 Diagnostic::error(SYNTAX_ERROR, format!("unterminated `{keyword}` path"))
@@ -274,6 +457,7 @@ impl<'a> Scanner<'a> {
             ));
         }
         self.pos = at + 1;
+        self.push(TokenKind::Path, open);
         // An include is a statement of its own: another may follow directly.
         self.end_statement();
         self.previous = b';';

@@ -5,6 +5,7 @@
 mod errors;
 mod robustness;
 mod syntax;
+mod tokens;
 
 use super::*;
 use crate::front::ast::{

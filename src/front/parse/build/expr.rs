@@ -4,7 +4,7 @@ use super::{Builder, P, Step};
 use crate::front::ast::{BinaryOp, Expr, ExprKind, UnaryOp, VecElem};
 use crate::front::diag::{DResult, Diagnostic};
 use crate::front::parse::strings::decode_string;
-use crate::front::parse::{Rule, SYNTAX_ERROR};
+use crate::front::parse::{Rule, SYNTAX_ERROR, precedence};
 use crate::span::Span;
 
 impl<'a> Builder<'a> {
@@ -144,7 +144,7 @@ impl<'a> Builder<'a> {
         let mut span = self.span(&first);
         let mut acc = self.expr(first, operand_depth)?;
         while let (Some(op), Some(rhs)) = (parts.next(), parts.next()) {
-            let Some(op) = binary_op(op.as_rule()) else {
+            let Some(op) = precedence::binary_op(op.as_rule()) else {
                 return Err(self.unexpected(&op));
             };
             span = span.to(self.span(&rhs));
@@ -379,19 +379,7 @@ impl<'a> Builder<'a> {
 /// Skips the precedence levels that hold a single child (`1` is an `expr` holding a
 /// `ternary` holding an `or_expr` ... holding a `number`), without recursion.
 fn peel(mut pair: P<'_>) -> P<'_> {
-    while matches!(
-        pair.as_rule(),
-        Rule::expr
-            | Rule::ternary
-            | Rule::or_expr
-            | Rule::and_expr
-            | Rule::eq_expr
-            | Rule::rel_expr
-            | Rule::add_expr
-            | Rule::mul_expr
-            | Rule::unary
-            | Rule::postfix
-    ) {
+    while precedence::is_level(pair.as_rule()) {
         let mut inner = pair.clone().into_inner();
         match (inner.next(), inner.next()) {
             (Some(only), None) => pair = only,
@@ -399,25 +387,6 @@ fn peel(mut pair: P<'_>) -> P<'_> {
         }
     }
     pair
-}
-
-fn binary_op(rule: Rule) -> Option<BinaryOp> {
-    Some(match rule {
-        Rule::op_or => BinaryOp::Or,
-        Rule::op_and => BinaryOp::And,
-        Rule::op_eq => BinaryOp::Eq,
-        Rule::op_ne => BinaryOp::Ne,
-        Rule::op_le => BinaryOp::Le,
-        Rule::op_ge => BinaryOp::Ge,
-        Rule::op_lt => BinaryOp::Lt,
-        Rule::op_gt => BinaryOp::Gt,
-        Rule::op_add => BinaryOp::Add,
-        Rule::op_sub => BinaryOp::Sub,
-        Rule::op_mul => BinaryOp::Mul,
-        Rule::op_div => BinaryOp::Div,
-        Rule::op_mod => BinaryOp::Mod,
-        _ => return None,
-    })
 }
 
 fn unary_op(text: &str) -> UnaryOp {
