@@ -158,7 +158,7 @@ fn every_module_imports_only_its_lower_layers() {
             }
         }
     }
-    assert!(wrong.is_empty(), "layering broken:\n{}", wrong.join("\n"));
+    assert_none("layering broken", &wrong);
 }
 
 #[test]
@@ -254,17 +254,23 @@ fn tolerances_are_written_only_in_the_tolerance_module() {
             continue;
         };
         for lit in negative_exponents(&code) {
-            bare.push(format!(
-                "{}: {lit}",
-                f.strip_prefix(src()).unwrap().display()
-            ));
+            bare.push(found_in(&f, &lit));
         }
     }
-    assert!(
-        bare.is_empty(),
-        "bare tolerance exponents outside src/tolerance.rs (name them there):\n{}",
-        bare.join("\n")
+    assert_none(
+        "bare tolerance exponents outside src/tolerance.rs (name them there)",
+        &bare,
     );
+}
+
+/// `what` found in `file`, for a failure message.
+fn found_in(file: &Path, what: &str) -> String {
+    let rel = file.strip_prefix(src()).unwrap_or(file);
+    format!("{}: {what}", rel.display())
+}
+
+fn assert_none(problem: &str, found: &[String]) {
+    assert!(found.is_empty(), "{problem}:\n{}", found.join("\n"));
 }
 
 /// What the command line may use of the library: the entry points, diagnostics, the source
@@ -294,18 +300,11 @@ fn the_command_line_calls_only_the_entry_points() {
                 .iter()
                 .any(|p| path.starts_with(p) || (braced && p.starts_with(path.as_str())));
             if !ok {
-                wrong.push(format!(
-                    "{}: {path}",
-                    f.strip_prefix(src()).unwrap().display()
-                ));
+                wrong.push(found_in(&f, &path));
             }
         }
     }
-    assert!(
-        wrong.is_empty(),
-        "the CLI reaches past the entry points:\n{}",
-        wrong.join("\n")
-    );
+    assert_none("the CLI reaches past the entry points", &wrong);
 }
 
 #[test]

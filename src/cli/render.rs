@@ -5,8 +5,9 @@
 
 use super::{EXIT_IO_ERROR, EXIT_MODEL_ERROR};
 use reparamc::command::render::{
-    BackendChoice, Cameras, Failure, Layout, Message, Options, Pictures, Projection, render,
+    BackendChoice, Cameras, Layout, Options, Pictures, Projection, render,
 };
+use reparamc::command::{Failure, Message};
 use reparamc::front::diag::Diagnostic;
 use reparamc::front::source::SourceMap;
 use reparamc::output::write_atomic;

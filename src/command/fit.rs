@@ -11,7 +11,8 @@
 //! Invariant: nothing here prints or writes a file; every line the user is to read is a
 //! [`Message`], in the order it arose.
 
-use super::render::{BackendChoice, Failure, Message, as_messages, choose_backend, draw};
+use super::render::{BackendChoice, choose_backend, draw};
+use super::{Failure, Message, as_messages};
 use crate::fit::loss::{LossSpec, Target};
 use crate::fit::optimize::Optimizer;
 use crate::fit::targets::{TargetSet, load_target_dir};

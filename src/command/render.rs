@@ -5,12 +5,12 @@
 //! the pictures as PNG bytes (one grid, or one per view with the `cameras.json` that makes
 //! the folder a target for `fit`) and what the user should read, in order. It also holds
 //! what `fit` shares with it: the choice of renderer ([`Backend`]), the edge softness of
-//! pictures for people, and [`Message`]/[`Failure`], the way both commands report.
+//! pictures for people.
 //!
 //! Invariant: nothing here prints or writes a file; every line the user is to read is a
 //! [`Message`], in the order it arose.
 
-use crate::front::diag::Diagnostic;
+use super::{Failure, Message, as_messages};
 use crate::front::source::SourceMap;
 use crate::render::camera::{
     Camera, CameraError, CameraSpec, cameras_json, default_views, parse_cameras_json,
@@ -25,44 +25,6 @@ pub use crate::render::camera::Projection;
 
 /// Softness of rendered edges (pixels): a little anti-aliasing.
 pub const EDGE_SOFTNESS: f64 = 0.4;
-
-/// A line for the user (standard error), in the order it arose.
-#[derive(Debug, Clone, PartialEq)]
-pub enum Message {
-    /// A diagnostic, to be shown against the [`SourceMap`] the command filled.
-    Diagnostic(Diagnostic),
-    /// A line of plain text (`renderer: …`, `warning: …`).
-    Line(String),
-}
-
-/// What stopped a command: everything it had to say, its last messages the errors.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Failure {
-    pub messages: Vec<Message>,
-}
-
-impl Failure {
-    /// After `messages`, a problem with an input other than the model (no source span).
-    pub fn input(mut messages: Vec<Message>, code: &'static str, text: String) -> Failure {
-        messages.push(Message::Diagnostic(Diagnostic::error(code, text)));
-        Failure { messages }
-    }
-}
-
-impl From<Box<Diagnostic>> for Failure {
-    /// A diagnostic that stopped a command before it had anything else to say (the
-    /// model's loaders return theirs boxed).
-    fn from(d: Box<Diagnostic>) -> Failure {
-        Failure {
-            messages: vec![Message::Diagnostic(*d)],
-        }
-    }
-}
-
-/// Diagnostics (a model's warnings) as messages, in their order.
-pub(crate) fn as_messages(diagnostics: Vec<Diagnostic>) -> Vec<Message> {
-    diagnostics.into_iter().map(Message::Diagnostic).collect()
-}
 
 /// Which renderer to use. Neither: the GPU when a hardware adapter is likely, else the
 /// CPU.

@@ -4,6 +4,9 @@
 //! `ast` with the pest grammar in `grammar/openscad.pest`, `load` reads a model and its
 //! includes, `naming` finds the names comments and variables give, and `eval` runs the
 //! program into an IR [`Model`](crate::ir::Model) whose features are affine forms.
+//! `parse::tokens` is the one token stream beside the grammar (variant files are matched
+//! on it), and the loaders below ([`load_model`] and its kin) are what every command uses
+//! to read a model, on a thread with a stack deep enough for the call-depth limit.
 
 pub mod ast;
 pub mod diag;
