@@ -4,7 +4,7 @@
 //! (a temporary file renamed into place, never over the input), the diff printed when
 //! asked, diagnostics and a one-line summary on standard error.
 
-use super::{EXIT_IO_ERROR, EXIT_MODEL_ERROR, print_stdout, report};
+use super::{EXIT_IO_ERROR, or_report, print_stdout, report};
 use reparamc::command::compile::{CompileOptions, Options, compile};
 use reparamc::front::source::SourceMap;
 use reparamc::output::{same_file, write_atomic};
@@ -92,12 +92,10 @@ pub fn run(args: Args) -> ExitCode {
         diff_to: args.diff.then(|| output.display().to_string()),
     };
     let mut sources = SourceMap::new();
-    let made = match compile(&options, &mut sources) {
+    let result = compile(&options, &mut sources);
+    let made = match or_report(&sources, result) {
         Ok(made) => made,
-        Err(d) => {
-            report(&sources, &[*d]);
-            return ExitCode::from(EXIT_MODEL_ERROR);
-        }
+        Err(code) => return code,
     };
     report(&sources, &made.warnings);
     let compiled = &made.compiled;

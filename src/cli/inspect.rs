@@ -3,7 +3,7 @@
 //! Flags in → [`InspectOptions`] → the library's `inspect` → tables or JSON on standard
 //! output, diagnostics on standard error.
 
-use super::{EXIT_IO_ERROR, EXIT_MODEL_ERROR, print_stdout, report};
+use super::{EXIT_IO_ERROR, or_report, print_stdout, report};
 use reparamc::command::inspect::{InspectOptions, inspect};
 use reparamc::front::source::SourceMap;
 use std::path::PathBuf;
@@ -21,12 +21,10 @@ pub struct Args {
 pub fn run(args: Args) -> ExitCode {
     let mut sources = SourceMap::new();
     let options = InspectOptions { model: args.model };
-    let found = match inspect(&options, &mut sources) {
+    let result = inspect(&options, &mut sources);
+    let found = match or_report(&sources, result) {
         Ok(found) => found,
-        Err(d) => {
-            report(&sources, &[*d]);
-            return ExitCode::from(EXIT_MODEL_ERROR);
-        }
+        Err(code) => return code,
     };
     report(&sources, &found.warnings);
     if !args.json {

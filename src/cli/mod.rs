@@ -85,3 +85,15 @@ pub fn print_stdout(text: &str) -> ExitCode {
         }
     }
 }
+
+/// An entry point's result; on its error, the diagnostic printed and the model-error exit
+/// code to return.
+pub fn or_report<T>(
+    sources: &SourceMap,
+    result: Result<T, Box<Diagnostic>>,
+) -> Result<T, ExitCode> {
+    result.map_err(|d| {
+        report(sources, &[*d]);
+        ExitCode::from(EXIT_MODEL_ERROR)
+    })
+}
