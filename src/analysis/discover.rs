@@ -118,6 +118,20 @@ struct Variation<'a, R> {
     fidelity: f64,
 }
 
+impl<'a, R> Variation<'a, R> {
+    /// A variation at its own values, before any relation is chosen.
+    fn start(sample: &'a Sample, faces: &Faces) -> Self {
+        Variation {
+            sample,
+            projector: Projector::new(faces.metric(&sample.values, &sample.optional)),
+            current: sample.values.clone(),
+            reference: None,
+            original: None,
+            fidelity: 1.0,
+        }
+    }
+}
+
 /// The chosen rows and how they couple slots, shared by every variation.
 struct Chosen {
     basis: RowBasis,
@@ -301,26 +315,10 @@ pub fn discover<S: Similarity>(
     chosen.members = chosen.blocks.members();
     let mut pool = Pool::new(tiers, |i| !implied(&chosen.basis, &rows_of(candidates, i)));
     let by_slot = candidates_by_slot(candidates, slots);
-    let mut vars: Vec<Variation<'_, S::Reference>> = samples
-        .iter()
-        .map(|s| Variation {
-            sample: s,
-            projector: Projector::new(faces.metric(&s.values, &s.optional)),
-            current: s.values.clone(),
-            reference: None,
-            original: None,
-            fidelity: 1.0,
-        })
-        .collect();
+    let mut vars: Vec<Variation<'_, S::Reference>> =
+        samples.iter().map(|s| Variation::start(s, faces)).collect();
     let mut out = Discovery::start();
-    let scale = samples
-        .iter()
-        .flat_map(|s| s.values.iter())
-        .fold(1.0f64, |m, v| m.max(v.abs()));
-    let bounds = Bounds {
-        roundoff: RELATIVE_ROUNDOFF * scale,
-        holds: candidates.tolerance.epsilon.max(RELATIVE_ROUNDOFF * scale),
-    };
+    let bounds = Bounds::of(samples, candidates);
     let holds = bounds.holds;
     // Per candidate, each variation's similarity after projecting onto it (1 when the
     // variation already satisfies it); the score is their product.
@@ -411,6 +409,21 @@ pub fn discover<S: Similarity>(
 struct Bounds {
     roundoff: f64,
     holds: f64,
+}
+
+impl Bounds {
+    /// The round-off of the variations' largest number, and the tolerance a relation holds
+    /// within (the candidates' own, never below that round-off).
+    fn of(samples: &[Sample], candidates: &Candidates) -> Bounds {
+        let scale = samples
+            .iter()
+            .flat_map(|s| s.values.iter())
+            .fold(1.0f64, |m, v| m.max(v.abs()));
+        Bounds {
+            roundoff: RELATIVE_ROUNDOFF * scale,
+            holds: candidates.tolerance.epsilon.max(RELATIVE_ROUNDOFF * scale),
+        }
+    }
 }
 
 /// Scores the remaining candidates of `tier` (reusing cached scores) and returns the best:

@@ -126,112 +126,131 @@ pub fn axial_axis(part: &Part) -> Option<usize> {
 /// Every feature of `part` (index `index`), or `None` if the part is off the axes.
 pub fn part_features(part: &Part, index: usize) -> Option<Vec<Feature>> {
     let iv = world_intervals(part)?;
-    let mut out = Vec::new();
-    let mut push = |kind, role: String, nums: Vec<Num>| {
-        out.push(Feature {
-            part: index,
-            kind,
-            role,
-            nums,
-        })
-    };
-    let center = |a: usize| {
-        iv[a]
-            .0
-            .add(&iv[a].1)
-            .mul(&Num::constant(0.5), FreezeSide::Right)
-    };
-    match &part.primitive {
-        Primitive::Cube { .. } => {
-            for a in 0..3 {
-                for (high, n) in [(false, &iv[a].0), (true, &iv[a].1)] {
-                    let kind = FeatureKind::Plane {
-                        axis: a as u8,
-                        high,
-                    };
-                    push(
-                        kind,
-                        FACE_NAMES[a][high as usize].to_string(),
-                        vec![n.clone()],
-                    );
-                }
-            }
-            for (a, axis_name) in AXIS_NAMES.iter().enumerate() {
-                let others: Vec<Num> = (0..3).filter(|&b| b != a).map(center).collect();
-                let role = format!("{axis_name}_axis");
-                push(FeatureKind::AxisLine { axis: a as u8 }, role, others);
-            }
-            for c in 0..8u8 {
-                let sides = [c & 1 != 0, c & 2 != 0, c & 4 != 0];
-                let nums = (0..3)
-                    .map(|a| {
-                        if sides[a] {
-                            iv[a].1.clone()
-                        } else {
-                            iv[a].0.clone()
-                        }
-                    })
-                    .collect();
-                let role = (0..3)
-                    .map(|a| FACE_NAMES[a][sides[a] as usize])
-                    .collect::<Vec<_>>()
-                    .join("_");
-                push(FeatureKind::Point { sides, cap: false }, role, nums);
-            }
-        }
-        Primitive::Cylinder { .. } => {
-            let axis = cylinder_axis(part)?;
-            for (high, n) in [(false, &iv[axis].0), (true, &iv[axis].1)] {
-                let kind = FeatureKind::Plane {
-                    axis: axis as u8,
-                    high,
-                };
-                push(
-                    kind,
-                    FACE_NAMES[axis][high as usize].to_string(),
-                    vec![n.clone()],
-                );
-            }
-            let others: Vec<Num> = (0..3).filter(|&b| b != axis).map(center).collect();
-            push(
-                FeatureKind::AxisLine { axis: axis as u8 },
-                "axis".into(),
-                others,
-            );
-            for (high, end) in [(false, &iv[axis].0), (true, &iv[axis].1)] {
-                let nums = (0..3)
-                    .map(|a| if a == axis { end.clone() } else { center(a) })
-                    .collect();
-                let mut sides = [false; 3];
-                sides[axis] = high;
-                let role = format!("{}_center", FACE_NAMES[axis][high as usize]);
-                push(FeatureKind::Point { sides, cap: true }, role, nums);
-            }
-        }
+    let mut found = match &part.primitive {
+        Primitive::Cube { .. } => box_features(&iv),
+        Primitive::Cylinder { .. } => cylinder_features(&iv, cylinder_axis(part)?),
         Primitive::Sphere { .. } => {
-            let nums = (0..3).map(center).collect();
-            push(
-                FeatureKind::Point {
-                    sides: [false; 3],
-                    cap: true,
-                },
+            let sides = [false; 3];
+            let nums = (0..3).map(|a| center(&iv, a)).collect();
+            vec![(
+                FeatureKind::Point { sides, cap: true },
                 "center".into(),
                 nums,
-            );
+            )]
         }
+    };
+    found.extend(extent_features(&iv, axial_axis(part)));
+    let features = found.into_iter().map(|(kind, role, nums)| Feature {
+        part: index,
+        kind,
+        role,
+        nums,
+    });
+    Some(features.collect())
+}
+
+/// A feature before it knows its part: kind, role and numbers.
+type Described = (FeatureKind, String, Vec<Num>);
+
+/// The middle of world interval `a`.
+fn center(iv: &[(Num, Num); 3], a: usize) -> Num {
+    iv[a]
+        .0
+        .add(&iv[a].1)
+        .mul(&Num::constant(0.5), FreezeSide::Right)
+}
+
+/// The two end planes along `axis`, low first.
+fn end_planes(iv: &[(Num, Num); 3], axis: usize) -> Vec<Described> {
+    [(false, &iv[axis].0), (true, &iv[axis].1)]
+        .into_iter()
+        .map(|(high, n)| {
+            let kind = FeatureKind::Plane {
+                axis: axis as u8,
+                high,
+            };
+            (
+                kind,
+                FACE_NAMES[axis][high as usize].to_string(),
+                vec![n.clone()],
+            )
+        })
+        .collect()
+}
+
+/// A box's six faces, its three centre lines and its eight corners, in that order.
+fn box_features(iv: &[(Num, Num); 3]) -> Vec<Described> {
+    let mut out: Vec<Described> = (0..3).flat_map(|a| end_planes(iv, a)).collect();
+    for (a, axis_name) in AXIS_NAMES.iter().enumerate() {
+        let others: Vec<Num> = (0..3).filter(|&b| b != a).map(|b| center(iv, b)).collect();
+        let role = format!("{axis_name}_axis");
+        out.push((FeatureKind::AxisLine { axis: a as u8 }, role, others));
     }
-    let axial = axial_axis(part);
-    for a in 0..3 {
-        let role = if Some(a) == axial {
-            "length"
-        } else {
-            EXTENT_NAMES[a]
-        };
-        push(
-            FeatureKind::Extent { axis: a as u8 },
-            role.to_string(),
-            vec![iv[a].1.sub(&iv[a].0)],
-        );
+    for c in 0..8u8 {
+        let sides = [c & 1 != 0, c & 2 != 0, c & 4 != 0];
+        let nums = (0..3)
+            .map(|a| {
+                if sides[a] {
+                    iv[a].1.clone()
+                } else {
+                    iv[a].0.clone()
+                }
+            })
+            .collect();
+        let role = (0..3)
+            .map(|a| FACE_NAMES[a][sides[a] as usize])
+            .collect::<Vec<_>>()
+            .join("_");
+        out.push((FeatureKind::Point { sides, cap: false }, role, nums));
     }
-    Some(out)
+    out
+}
+
+/// A cylinder's (or cone's) two end planes, its axis and the centres of its two caps.
+fn cylinder_features(iv: &[(Num, Num); 3], axis: usize) -> Vec<Described> {
+    let mut out = end_planes(iv, axis);
+    let others: Vec<Num> = (0..3)
+        .filter(|&b| b != axis)
+        .map(|b| center(iv, b))
+        .collect();
+    out.push((
+        FeatureKind::AxisLine { axis: axis as u8 },
+        "axis".into(),
+        others,
+    ));
+    for (high, end) in [(false, &iv[axis].0), (true, &iv[axis].1)] {
+        let nums = (0..3)
+            .map(|a| {
+                if a == axis {
+                    end.clone()
+                } else {
+                    center(iv, a)
+                }
+            })
+            .collect();
+        let mut sides = [false; 3];
+        sides[axis] = high;
+        let role = format!("{}_center", FACE_NAMES[axis][high as usize]);
+        out.push((FeatureKind::Point { sides, cap: true }, role, nums));
+    }
+    out
+}
+
+/// The three extents (`length` along a round part's axis).
+fn extent_features(iv: &[(Num, Num); 3], axial: Option<usize>) -> Vec<Described> {
+    (0..3)
+        .map(|a| {
+            let role = if Some(a) == axial {
+                "length"
+            } else {
+                EXTENT_NAMES[a]
+            };
+            let nums = vec![iv[a].1.sub(&iv[a].0)];
+            (
+                FeatureKind::Extent { axis: a as u8 },
+                role.to_string(),
+                nums,
+            )
+        })
+        .collect()
 }
