@@ -138,7 +138,7 @@ fn breakdown(s: &Setup) {
             let cc = Instant::now();
             let l = view_loss(&img, t, &reparamc::fit::loss::LossSpec::default(), true);
             let d = Instant::now();
-            let _ = theta_gradient(&scene, &v, &e, &l.gm, &l.gs);
+            let _ = theta_gradient(&scene, &v, &e, &l.dm, &l.ds);
             let f = Instant::now();
             tp += (b - a).as_secs_f64();
             tr += (cc - b).as_secs_f64();

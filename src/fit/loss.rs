@@ -277,14 +277,6 @@ pub fn blur(img: &[f32], w: usize, h: usize, kernel: &[f32]) -> Vec<f32> {
     out
 }
 
-/// One view's loss and its derivatives with respect to the rendered channels.
-#[derive(Debug, Clone, PartialEq)]
-pub struct ViewLoss {
-    pub loss: f64,
-    pub gm: Vec<f32>,
-    pub gs: Vec<f32>,
-}
-
 /// 2×2 average pooling (a last odd row or column is averaged on its own).
 pub fn pool(img: &[f32], w: u32, h: u32) -> (Vec<f32>, u32, u32) {
     let (w2, h2) = (w.div_ceil(2), h.div_ceil(2));
@@ -322,9 +314,9 @@ pub fn unpool(img: &[f32], w: u32, h: u32) -> Vec<f32> {
 }
 
 /// `mean(sharpen(M − M_T)²) + w·mean(sharpen(S − S_T)²)` (after `spec.level` poolings) and
-/// its derivatives. The means are over the picture's own pixels: a border the fit added
+/// its derivatives with respect to the rendered channels. The means are over the picture's own pixels: a border the fit added
 /// around it does not dilute the loss against the regulariser.
-pub fn view_loss(render: &SoftImage, target: &Target, spec: &LossSpec, grad: bool) -> ViewLoss {
+pub fn view_loss(render: &SoftImage, target: &Target, spec: &LossSpec, grad: bool) -> ImageValue {
     let (w0, h0) = (render.width, render.height);
     let mut rm: Vec<f32> = render.m.iter().zip(&target.m).map(|(a, b)| a - b).collect();
     let mut rs: Vec<f32> = render.s.iter().zip(&target.s).map(|(a, b)| a - b).collect();
@@ -347,10 +339,10 @@ pub fn view_loss(render: &SoftImage, target: &Target, spec: &LossSpec, grad: boo
     let ss: f64 = qs.iter().map(|&v| (v as f64) * (v as f64)).sum();
     let loss = sm / n + spec.shading * ss / n;
     if !grad {
-        return ViewLoss {
-            loss,
-            gm: Vec::new(),
-            gs: Vec::new(),
+        return ImageValue {
+            value: loss,
+            dm: Vec::new(),
+            ds: Vec::new(),
         };
     }
     let km = (2.0 / n) as f32;
@@ -368,7 +360,11 @@ pub fn view_loss(render: &SoftImage, target: &Target, spec: &LossSpec, grad: boo
         gm = unpool(&gm, wk, hk);
         gs = unpool(&gs, wk, hk);
     }
-    ViewLoss { loss, gm, gs }
+    ImageValue {
+        value: loss,
+        dm: gm,
+        ds: gs,
+    }
 }
 
 /// The image loss against one target per view, as a function the renderer differentiates.
@@ -381,12 +377,7 @@ pub struct ImageLoss<'a> {
 
 impl ImageFunction for ImageLoss<'_> {
     fn eval(&self, view: usize, image: &SoftImage, grad: bool) -> ImageValue {
-        let l = view_loss(image, &self.targets[view], self.spec, grad);
-        ImageValue {
-            value: l.loss,
-            dm: l.gm,
-            ds: l.gs,
-        }
+        view_loss(image, &self.targets[view], self.spec, grad)
     }
 }
 
