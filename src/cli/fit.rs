@@ -224,6 +224,15 @@ pub fn run(args: Args) -> ExitCode {
 /// Writes the fitted model, the report and the gallery (each file whole or not at all)
 /// and says what was fitted.
 fn write_results(args: &Args, fitted: Fitted) -> ExitCode {
+    let summary = format!(
+        "fitted {} of {} numbers to {} views: image loss {:.5} -> {:.5}; wrote {}",
+        fitted.moved,
+        fitted.numbers(),
+        fitted.report.views.len(),
+        fitted.start_loss(),
+        fitted.end_loss(),
+        args.output.display()
+    );
     let mut outputs: Vec<(PathBuf, Vec<u8>)> =
         vec![(args.output.clone(), fitted.scad.into_bytes())];
     if let Some(path) = &args.report {
@@ -244,14 +253,6 @@ fn write_results(args: &Args, fitted: Fitted) -> ExitCode {
             return ExitCode::from(EXIT_IO_ERROR);
         }
     }
-    eprintln!(
-        "fitted {} of {} numbers to {} views: image loss {:.5} -> {:.5}; wrote {}",
-        fitted.moved,
-        fitted.numbers,
-        fitted.report.views.len(),
-        fitted.start_loss,
-        fitted.end_loss,
-        args.output.display()
-    );
+    eprintln!("{summary}");
     ExitCode::SUCCESS
 }

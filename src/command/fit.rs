@@ -235,10 +235,23 @@ pub struct Fitted {
     pub gallery: Option<Vec<u8>>,
     /// Numbers that moved (by more than round-off), of all the model's numbers.
     pub moved: usize,
-    pub numbers: usize,
-    /// The image loss summed over the views, at the start and at the end.
-    pub start_loss: f64,
-    pub end_loss: f64,
+}
+
+impl Fitted {
+    /// How many numbers the model has (every one is in the report).
+    pub fn numbers(&self) -> usize {
+        self.report.slots.len()
+    }
+
+    /// The image loss summed over the views, at the start.
+    pub fn start_loss(&self) -> f64 {
+        self.report.start_loss.iter().sum()
+    }
+
+    /// The image loss summed over the views, at the end.
+    pub fn end_loss(&self) -> f64 {
+        self.report.end_loss.iter().sum()
+    }
 }
 
 /// Checks the settings, loads the model (into `sources`) and the targets, and picks the
@@ -415,9 +428,6 @@ impl Job {
             messages,
             gallery,
             moved,
-            numbers: model.slots.len(),
-            start_loss: report.start_loss.iter().sum(),
-            end_loss: report.end_loss.iter().sum(),
             report,
         }
     }
