@@ -147,6 +147,10 @@ pub const CHOLESKY_RETRY_RIDGE: f64 = 1e-12;
 /// still gets a positive ridge: far below any weight a model's faces give.
 pub const SCALE_FLOOR: f64 = 1e-300;
 
+/// The share of intent relations the noise test may reject by chance (`analysis::noise`):
+/// each one costs a slider. Also sets which relations pool into the noise estimate.
+pub const NOISE_FALSE_REJECTION: f64 = 1e-3;
+
 /// Volume lost by removing a part, as a fraction of the part's own volume in the input,
 /// below which a variation does without the part (it is hidden inside others or shrunk to
 /// nothing). Relative to the part, not the model, so a small part of a large model counts.

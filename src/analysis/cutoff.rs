@@ -56,6 +56,21 @@ fn derivative(curve: &[f64]) -> Vec<f64> {
         .collect()
 }
 
+/// The paper's change point (on the curve's derivative) and the published code's (on the
+/// curve itself), as counts of constraints kept, for the distortion `curve`.
+pub fn change_points(curve: &[f64]) -> (usize, usize) {
+    let steps = curve.len().saturating_sub(1);
+    if steps == 0 {
+        return (0, 0);
+    }
+    let published = mean_shift(curve).saturating_sub(1);
+    let deriv = derivative(curve);
+    // A jump between steps s−1 and s raises the central difference from index s−1 on,
+    // so the derivative's level shift is at s−1: keep s−1 constraints.
+    let paper = mean_shift(&deriv).min(steps);
+    (paper, published)
+}
+
 /// How many times the typical step a step may cost before it counts as past the jump.
 pub const OUTLIER_FACTOR: f64 = 3.0;
 
@@ -80,11 +95,7 @@ pub fn cutoff(curve: &[f64], tolerance: f64, plausible: usize) -> Cutoff {
             reason: "no constraints were chosen".into(),
         };
     }
-    let published = mean_shift(curve).saturating_sub(1);
-    let deriv = derivative(curve);
-    // A jump between steps s−1 and s raises the central difference from index s−1 on,
-    // so the derivative's level shift is at s−1: keep s−1 constraints.
-    let paper = mean_shift(&deriv).min(steps);
+    let (paper, published) = change_points(curve);
     let max = curve.iter().copied().fold(0.0, f64::max);
     if max <= tolerance {
         return Cutoff {

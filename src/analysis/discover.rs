@@ -17,10 +17,10 @@
 //! blocks they touch (`project`), and IoU integrates only around the parts that moved.
 
 use super::candidates::Candidates;
+use super::chosen::{Chosen, candidates_by_slot, forget, rows_of};
 use super::pool::Pool;
 use super::project::{Faces, Projector};
 use super::rowbasis::RowBasis;
-use super::slotblocks::SlotBlocks;
 use crate::ir::Affine;
 use crate::tolerance::RELATIVE_ROUNDOFF;
 use std::collections::{HashMap, HashSet};
@@ -77,32 +77,10 @@ pub struct Discovery {
     pub worst: Vec<f64>,
 }
 
-/// All rows of a candidate.
-fn rows_of(c: &Candidates, i: usize) -> Vec<&Affine> {
-    c.list[i].rows.iter().collect()
-}
-
 /// Whether a point already satisfies every row within `tolerance`, the one that decides
 /// whether a relation holds at all: projecting onto them would move it by no more.
 fn satisfied(rows: &[&Affine], x: &[f64], tolerance: f64) -> bool {
     rows.iter().all(|r| r.eval(x).abs() <= tolerance)
-}
-
-/// Forgets the cached scores of every candidate holding one of `slots`.
-fn forget(
-    cache: &mut [Option<Vec<f64>>],
-    by_slot: &[Vec<u32>],
-    slots: impl IntoIterator<Item = u32>,
-) {
-    for s in slots {
-        for &k in &by_slot[s as usize] {
-            cache[k as usize] = None;
-        }
-    }
-}
-
-fn implied(basis: &RowBasis, rows: &[&Affine]) -> bool {
-    rows.iter().all(|r| basis.contains_terms(&r.terms))
 }
 
 /// One variation during the greedy: where it is, and what projecting it needs.
@@ -132,58 +110,6 @@ impl<'a, R> Variation<'a, R> {
     }
 }
 
-/// The chosen rows and how they couple slots, shared by every variation.
-struct Chosen {
-    basis: RowBasis,
-    blocks: SlotBlocks,
-    members: HashMap<u32, Vec<u32>>,
-    /// Whether blocks were joined since `members` was listed.
-    joined: bool,
-}
-
-impl Chosen {
-    /// Adds a candidate's rows. A row inside one block enters each variation's factored
-    /// block as a rank-one correction; a row joining blocks makes them factor afresh.
-    fn add<R>(&mut self, rows: &[&Affine], vars: &mut [Variation<'_, R>]) {
-        for r in rows {
-            let mut roots: Vec<u32> = r.slots().map(|s| self.blocks.find(s)).collect();
-            roots.sort_unstable();
-            roots.dedup();
-            if !self.basis.add_terms(&r.terms) {
-                continue;
-            }
-            if roots.len() == 1 {
-                for v in vars.iter_mut() {
-                    v.projector.absorb(roots[0], r);
-                }
-            } else {
-                for v in vars.iter_mut() {
-                    v.projector.forget(&roots);
-                }
-                self.blocks.join(r.slots());
-                self.joined = true;
-            }
-        }
-    }
-}
-
-/// How the variation's point moves when projected onto the chosen rows plus `rows`.
-fn shift_of<R>(
-    v: &mut Variation<'_, R>,
-    faces: &Faces,
-    chosen: &mut Chosen,
-    rows: &[&Affine],
-) -> Vec<(u32, f64)> {
-    v.projector.shift(
-        faces,
-        &chosen.basis,
-        &mut chosen.blocks,
-        &chosen.members,
-        &v.current,
-        rows,
-    )
-}
-
 impl Discovery {
     /// No step yet: the curve starts at 0.
     fn start() -> Discovery {
@@ -209,21 +135,6 @@ impl Discovery {
     }
 }
 
-/// Which candidates hold each slot: what to look at again when slots move or the basis
-/// changes around them.
-fn candidates_by_slot(candidates: &Candidates, slots: usize) -> Vec<Vec<u32>> {
-    let mut by_slot: Vec<Vec<u32>> = vec![Vec::new(); slots];
-    for (i, c) in candidates.list.iter().enumerate() {
-        let mut mine: Vec<u32> = c.rows.iter().flat_map(|r| r.slots()).collect();
-        mine.sort_unstable();
-        mine.dedup();
-        for s in mine {
-            by_slot[s as usize].push(i as u32);
-        }
-    }
-    by_slot
-}
-
 /// Moves every variation onto the chosen rows plus `rows`, updating its prepared reference
 /// and its fidelity to the original. Returns the slots to look at again (`rows`' own and
 /// those moved beyond `roundoff`) and every slot that moved at all.
@@ -238,7 +149,7 @@ fn move_variations<S: Similarity>(
     let mut dirty: HashSet<u32> = rows.iter().flat_map(|r| r.slots()).collect();
     let mut moved_any: HashSet<u32> = HashSet::new();
     for v in vars.iter_mut() {
-        let shift = shift_of(v, faces, chosen, rows);
+        let (shift, _) = chosen.shift(&mut v.projector, faces, &v.current, rows);
         let mut moved: Vec<u32> = Vec::new();
         for (s, delta) in shift {
             v.current[s as usize] += delta;
@@ -264,29 +175,6 @@ fn move_variations<S: Similarity>(
     (dirty, moved_any)
 }
 
-/// Takes out of the pool the candidates the chosen rows now imply, into `gone`. Only
-/// candidates holding a pivot whose row changed can have become implied.
-fn drop_implied(
-    basis: &mut RowBasis,
-    candidates: &Candidates,
-    by_slot: &[Vec<u32>],
-    pool: &mut Pool,
-    gone: &mut Vec<usize>,
-) {
-    let mut pivots = basis.take_touched();
-    pivots.sort_unstable();
-    pivots.dedup();
-    for s in pivots {
-        for &k in &by_slot[s as usize] {
-            let k = k as usize;
-            if pool.is_alive(k) && implied(basis, &rows_of(candidates, k)) {
-                pool.kill(k);
-                gone.push(k);
-            }
-        }
-    }
-}
-
 /// Runs the greedy selection to the end (every candidate chosen or implied).
 ///
 /// `tiers[c]` ranks candidate `c` by prior plausibility (0 first): each step takes the best
@@ -306,14 +194,8 @@ pub fn discover<S: Similarity>(
     tiers: &[u8],
 ) -> Discovery {
     debug_assert_eq!(faces.slots(), slots);
-    let mut chosen = Chosen {
-        basis: RowBasis::default(),
-        blocks: SlotBlocks::of(faces),
-        members: HashMap::new(),
-        joined: false,
-    };
-    chosen.members = chosen.blocks.members();
-    let mut pool = Pool::new(tiers, |i| !implied(&chosen.basis, &rows_of(candidates, i)));
+    let mut chosen = Chosen::new(faces);
+    let mut pool = Pool::new(tiers, |i| !chosen.implies(&rows_of(candidates, i)));
     let by_slot = candidates_by_slot(candidates, slots);
     let mut vars: Vec<Variation<'_, S::Reference>> =
         samples.iter().map(|s| Variation::start(s, faces)).collect();
@@ -342,11 +224,11 @@ pub fn discover<S: Similarity>(
             for c in batch {
                 let rows = rows_of(candidates, c);
                 pool.kill(c);
-                if implied(&chosen.basis, &rows) {
+                if chosen.implies(&rows) {
                     gone.push(c);
                     continue;
                 }
-                chosen.add(&rows, &mut vars);
+                chosen.add(&rows, &mut projectors(&mut vars));
                 forget(&mut cache, &by_slot, rows.iter().flat_map(|r| r.slots()));
                 let same = *out.curve.last().unwrap_or(&0.0);
                 out.push_step(c, 1.0, tier, 0.0, same);
@@ -379,28 +261,24 @@ pub fn discover<S: Similarity>(
             }
             forget(&mut cache, &by_slot, dirty);
             let worst = sims.iter().fold(0.0, |w, s| f64::max(w, 1.0 - s));
-            chosen.add(&rows, &mut vars);
+            chosen.add(&rows, &mut projectors(&mut vars));
             pool.kill(c);
             let mean = vars.iter().map(|v| v.fidelity).sum::<f64>() / vars.len() as f64;
             out.push_step(c, score, tier, worst, 1.0 - mean);
         }
-        if chosen.joined {
-            chosen.members = chosen.blocks.members();
-            chosen.joined = false;
-        }
-        drop_implied(
-            &mut chosen.basis,
-            candidates,
-            &by_slot,
-            &mut pool,
-            &mut gone,
-        );
+        chosen.refresh_members();
+        chosen.drop_implied(candidates, &by_slot, &mut pool, &mut gone);
         gone.sort_unstable();
         if let Some(last) = out.implied.last_mut() {
             *last = gone;
         }
     }
     out
+}
+
+/// Every variation's projector, for [`Chosen::add`].
+fn projectors<'v, R>(vars: &'v mut [Variation<'_, R>]) -> Vec<&'v mut Projector> {
+    vars.iter_mut().map(|v| &mut v.projector).collect()
 }
 
 /// What counts as no change (a move or residual below the round-off of the model's numbers)
@@ -488,7 +366,7 @@ fn similarities<S: Similarity>(
             sims.push(1.0);
             continue;
         }
-        let shift = shift_of(v, faces, chosen, rows);
+        let (shift, _) = chosen.shift(&mut v.projector, faces, &v.current, rows);
         // A variation that already satisfies the candidate does not move.
         if shift.iter().all(|(_, d)| d.abs() <= roundoff) {
             sims.push(1.0);

@@ -1,18 +1,25 @@
 //! The analysis: which geometric relations hold on a model.
 //!
 //! `candidates` finds every relation of the paper's four kinds that holds on the input;
-//! `optional` the parts a variation does without; `noise`, `tiers`, `discover` and `cutoff`
-//! choose the relations the variations keep (`prior` without variations); `reparam` solves
+//! `optional` the parts a variation does without; `noise` states the variations' noise
+//! model, `classes` learns how often each class of relation is intent, and `intent` tests
+//! every relation against both, which chooses the relations the
+//! variations keep (`prior` without variations); `discover` is the paper's own greedy by
+//! IoU and `cutoff` its change points on the distortion curve; `reparam` solves
 //! them for a few free variables, `anchors` pins the model in place and `project` reads the
-//! variations on the kept relations; `names` and `ranges` make the sliders. `similarity` is
+//! variations on the kept relations; `names` and `ranges` make the sliders, keeping the `contacts` the variations keep. `similarity` is
 //! the model's IoU between two settings (exact volumes, from `geom`); `linalg`, `rowbasis`,
-//! `slotblocks` and `pool` are the shared machinery. Floats are compared only against
+//! `slotblocks`, `chosen` and `pool` are the shared machinery. Floats are compared only against
 //! `crate::tolerance`.
 
 pub mod anchors;
 pub mod candidates;
+pub mod chosen;
+pub mod classes;
+pub mod contacts;
 pub mod cutoff;
 pub mod discover;
+pub mod intent;
 pub mod linalg;
 pub mod names;
 pub mod noise;
@@ -25,6 +32,5 @@ pub mod reparam;
 pub mod rowbasis;
 pub mod similarity;
 pub mod slotblocks;
-pub mod tiers;
 
 pub use candidates::{Candidate, Candidates, RelationKind, find_candidates, find_candidates_for};

@@ -1,86 +1,172 @@
-//! How far off a relation may be in the variations and still be intent: the noise gate.
+//! The noise model: how far off the variations may be and a relation still be intent.
 //!
-//! Variations are noisy (fitted to images, nudged by hand), so no relation holds exactly in
-//! them. Volume IoU alone cannot tell noise from a real change: a leg's width jittered by a
-//! pixel costs as much IoU as a leg made twice as tall, because the leg is thin. Noise,
-//! though, lives in world units. A relation's residual in a variation (`a − b` of its two
-//! features, world units) is noise-sized when the relation is intent and larger when the
-//! variation changed it on purpose.
+//! Variations are noisy (fitted to images, nudged by hand). The model: every face of a part
+//! a variation keeps is displaced from where the intended design puts it by independent
+//! Gaussian noise of one standard deviation `σ`, in world units, the unit pictures and hands
+//! err in, whatever numbers the author typed to place the face. Projecting a variation onto
+//! a relation in the metric that counts face displacements (`project::Faces::noise_metric`)
+//! moves it by the least displacement that makes the relation hold; if the relation is
+//! intent, that squared displacement over `σ²` is χ²-distributed with one degree of freedom
+//! per row and per variation that has both parts.
 //!
-//! The noise level is estimated from the data, robustly: the median over candidates of each
-//! one's largest residual across the variations. Most candidates of a CAD model are intent
-//! (repeated parts, contacts, alignments), so the median is a true relation's residual; up
-//! to half of them may be accidents without moving it. A candidate whose residual exceeds
-//! [`NOISE_FACTOR`] times that level in some variation is *deferred*: discovery takes it only
-//! after every plausible one, so the curve jumps where the deferred ones start.
+//! One decision rule follows, the same for every kind of object: a relation is intent when
+//! that is more likely than not, weighing the likelihood of its residuals under the noise
+//! against their likelihood when the variations changed it by any amount (a change of
+//! unknown scale: [`NoiseModel::log_likelihood_ratio`]), with the prior odds of its class
+//! (`classes`). A χ² statistic in normal units ([`NoiseModel::z`]) is reported beside it.
 //!
-//! Invariants: residuals ignore variations that do without either part (optional parts); the
-//! threshold is never below the model's float tolerance, so with exact variations the gate
-//! defers exactly the relations some variation breaks.
+//! `σ` is estimated from the variations themselves: the pooled variance of the relations
+//! whose statistic chance reaches in all but [`FALSE_REJECTION`] of intent ones (a
+//! one-sided test at [`INTENT_Z`]), iterated from a low start until that set stops changing. It never falls below `floor` (the model's
+//! float tolerance), so with exact variations exactly the relations some variation breaks
+//! are rejected.
 
-use super::candidates::Candidates;
-use super::discover::Sample;
-use crate::tolerance::Tolerance;
 use serde::Serialize;
 
-/// How many noise levels a residual may reach before its relation is deferred.
-pub const NOISE_FACTOR: f64 = 3.0;
+/// The share of intent relations the test rejects by chance (each costs a slider).
+pub const FALSE_REJECTION: f64 = crate::tolerance::NOISE_FALSE_REJECTION;
 
-/// The gate's verdict for every candidate.
-#[derive(Debug, Clone, Serialize)]
-pub struct NoiseGate {
-    /// The estimated noise level (world units): the median largest residual.
-    pub level: f64,
-    /// Residuals above this (world units) defer a relation.
-    pub threshold: f64,
-    /// Per candidate: its largest residual over the variations (world units).
-    #[serde(skip)]
-    pub residual: Vec<f64>,
-    /// Per candidate: whether some variation breaks it beyond the noise.
-    #[serde(skip)]
-    pub deferred: Vec<bool>,
+/// The standard normal quantile of `1 − FALSE_REJECTION`: a statistic above it rejects.
+pub const INTENT_Z: f64 = 3.090_232_306;
+
+/// The standard normal quantile of 1/4.
+const LOWER_QUARTILE_Z: f64 = -0.674_489_750;
+
+/// Points of the log-uniform grid of broken residual scales.
+const SCALE_GRID: usize = 64;
+
+/// At most this many re-estimations of `σ` (the accepted set settles in a few).
+const MAX_ROUNDS: usize = 50;
+
+/// What the variations say about one relation: the squared face displacement projecting
+/// onto it costs (world units², summed over variations) and its degrees of freedom.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Evidence {
+    pub cost: f64,
+    pub dof: usize,
 }
 
-/// The largest residual of candidate `i` over the variations that keep both of its parts.
-fn largest_residual(candidates: &Candidates, i: usize, samples: &[Sample]) -> f64 {
-    let c = &candidates.list[i];
-    let parts = [candidates.features[c.a].part, candidates.features[c.b].part];
-    samples
-        .iter()
-        .filter(|s| !parts.iter().any(|p| s.optional.contains(p)))
-        .flat_map(|s| c.rows.iter().map(|r| r.eval(&s.values).abs()))
-        .fold(0.0, f64::max)
+/// The estimated noise and the test it sets.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct NoiseModel {
+    /// One standard deviation of a face's displacement (world units).
+    pub sigma: f64,
+    /// The floor `sigma` never falls below (the model's float tolerance).
+    pub floor: f64,
+    /// How many relations the estimate was pooled over.
+    pub pooled: usize,
+    /// The statistic above which a relation is rejected.
+    pub critical_z: f64,
+}
+
+/// The Wilson–Hilferty normal form of a χ² statistic `x` with `dof` degrees of freedom:
+/// approximately standard normal under the null hypothesis (exact enough for a test at
+/// three standard deviations from one degree of freedom on).
+pub fn chi2_z(x: f64, dof: usize) -> f64 {
+    if dof == 0 {
+        return f64::NEG_INFINITY;
+    }
+    let k = dof as f64;
+    let v = 2.0 / (9.0 * k);
+    ((x.max(0.0) / k).cbrt() - (1.0 - v)) / v.sqrt()
+}
+
+impl NoiseModel {
+    /// The test statistic of `e` under this noise.
+    pub fn z(&self, e: Evidence) -> f64 {
+        chi2_z(e.cost / (self.sigma * self.sigma), e.dof)
+    }
+
+    /// Whether the noise explains `e` (the relation is intent).
+    pub fn explains(&self, e: Evidence) -> bool {
+        self.z(e) <= self.critical_z
+    }
+
+    /// The log-likelihood ratio of `e` between "intent" (its residuals are the noise) and
+    /// "broken" (the variations changed it by a residual of unknown scale `s`, anywhere from
+    /// the noise to the model's `size` with no scale preferred — log-uniform — plus the
+    /// noise). Positive when the noise explains `e` better; 0 when nothing is seen.
+    pub fn log_likelihood_ratio(&self, e: Evidence, size: f64) -> f64 {
+        if e.dof == 0 {
+            return 0.0;
+        }
+        let k = e.dof as f64;
+        let log_normal = |v: f64| -0.5 * k * (2.0 * std::f64::consts::PI * v).ln() - e.cost / (2.0 * v);
+        let noise = self.sigma * self.sigma;
+        let (lo, hi) = (self.sigma.ln(), size.max(self.sigma).ln());
+        let broken: Vec<f64> = (0..SCALE_GRID)
+            .map(|j| {
+                let u = lo + (hi - lo) * (j as f64 + 0.5) / SCALE_GRID as f64;
+                log_normal(noise + (2.0 * u).exp())
+            })
+            .collect();
+        let top = broken.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        let mean = broken.iter().map(|l| (l - top).exp()).sum::<f64>() / SCALE_GRID as f64;
+        log_normal(noise) - (top + mean.ln())
+    }
+
+    /// The noise of the variations whose relations' evidence is `evidence`, never below
+    /// `floor` (see the module doc).
+    pub fn estimate(evidence: &[Evidence], floor: f64) -> NoiseModel {
+        let floor = floor.max(f64::MIN_POSITIVE);
+        let seen: Vec<Evidence> = evidence.iter().copied().filter(|e| e.dof > 0).collect();
+        let mut model = NoiseModel {
+            sigma: floor,
+            floor,
+            pooled: 0,
+            critical_z: INTENT_Z,
+        };
+        if seen.is_empty() {
+            return model;
+        }
+        // Start from the lower quartile's variance per degree of freedom over the lower
+        // quartile of χ²ₖ/k: low when many relations are broken, and the re-pooling below
+        // only grows an estimate that is too low (a truncated χ² averages more than its
+        // share of the truncation point), up to where the intent relations' cluster ends.
+        let per_dof: Vec<f64> = seen.iter().map(|e| e.cost / e.dof as f64).collect();
+        let dofs: Vec<f64> = seen.iter().map(|e| e.dof as f64).collect();
+        let v = 2.0 / (9.0 * median(&dofs));
+        let quartile_of_chi2 = (1.0 - v + LOWER_QUARTILE_Z * v.sqrt()).max(0.0).powi(3);
+        let mut variance = quantile(&per_dof, 0.25) / quartile_of_chi2.max(f64::MIN_POSITIVE);
+        let mut accepted: Vec<bool> = Vec::new();
+        for _ in 0..MAX_ROUNDS {
+            model.sigma = variance.sqrt().max(floor);
+            let now: Vec<bool> = seen.iter().map(|&e| model.explains(e)).collect();
+            if now == accepted {
+                break;
+            }
+            let (cost, dof) = seen
+                .iter()
+                .zip(&now)
+                .filter(|(_, a)| **a)
+                .fold((0.0, 0usize), |(c, d), (e, _)| (c + e.cost, d + e.dof));
+            model.pooled = now.iter().filter(|a| **a).count();
+            accepted = now;
+            if dof == 0 {
+                break;
+            }
+            variance = cost / dof as f64;
+        }
+        model
+    }
 }
 
 /// The median of `values` (0 for none).
 pub fn median(values: &[f64]) -> f64 {
+    quantile(values, 0.5)
+}
+
+/// The `q` quantile of `values`, interpolating between neighbours (0 for none).
+pub fn quantile(values: &[f64], q: f64) -> f64 {
     if values.is_empty() {
         return 0.0;
     }
     let mut v = values.to_vec();
     v.sort_by(f64::total_cmp);
-    let n = v.len();
-    if n % 2 == 1 {
-        v[n / 2]
-    } else {
-        0.5 * (v[n / 2 - 1] + v[n / 2])
-    }
-}
-
-/// Estimates the variations' noise and decides which candidates they break beyond it.
-pub fn noise_gate(candidates: &Candidates, samples: &[Sample], tolerance: Tolerance) -> NoiseGate {
-    let residual: Vec<f64> = (0..candidates.list.len())
-        .map(|i| largest_residual(candidates, i, samples))
-        .collect();
-    let level = median(&residual);
-    let threshold = (NOISE_FACTOR * level).max(tolerance.epsilon);
-    let deferred = residual.iter().map(|&r| r > threshold).collect();
-    NoiseGate {
-        level,
-        threshold,
-        residual,
-        deferred,
-    }
+    let at = q.clamp(0.0, 1.0) * (v.len() - 1) as f64;
+    let (i, t) = (at.floor() as usize, at.fract());
+    let next = v[(i + 1).min(v.len() - 1)];
+    v[i] + t * (next - v[i])
 }
 
 #[cfg(test)]
@@ -92,5 +178,92 @@ mod tests {
         assert_eq!(median(&[3.0, 1.0, 2.0]), 2.0);
         assert_eq!(median(&[4.0, 1.0, 2.0, 3.0]), 2.5);
         assert_eq!(median(&[]), 0.0);
+    }
+
+    /// A deterministic stream of standard normal draws (xorshift and Box–Muller).
+    fn normals(seed: u64) -> impl Iterator<Item = f64> {
+        let mut x = seed.max(1);
+        let mut uniform = move || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            ((x >> 11) as f64 + 0.5) / (1u64 << 53) as f64
+        };
+        std::iter::repeat_with(move || {
+            let (u, v) = (uniform(), uniform());
+            (-2.0 * u.ln()).sqrt() * (2.0 * std::f64::consts::PI * v).cos()
+        })
+    }
+
+    /// `n` relations of `dof` degrees of freedom whose residuals are noise of `sigma`.
+    fn intent(n: usize, dof: usize, sigma: f64, seed: u64) -> Vec<Evidence> {
+        let mut z = normals(seed);
+        (0..n)
+            .map(|_| Evidence {
+                cost: (0..dof).map(|_| (sigma * z.next().unwrap_or(0.0)).powi(2)).sum(),
+                dof,
+            })
+            .collect()
+    }
+
+    #[test]
+    fn the_wilson_hilferty_form_puts_the_chi2_quantiles_where_they_are() {
+        // χ²₁ at 10.83 and χ²₃ at 16.27 are the 0.999 quantiles.
+        assert!((chi2_z(10.83, 1) - INTENT_Z).abs() < 0.1);
+        assert!((chi2_z(16.27, 3) - INTENT_Z).abs() < 0.05);
+        assert!(chi2_z(0.0, 3) < -2.0);
+    }
+
+    #[test]
+    fn the_estimate_recovers_the_noise_among_broken_relations() {
+        // 300 intent relations with σ = 0.7, and 120 the variations change by 5 to 50.
+        let mut e = intent(300, 3, 0.7, 9);
+        e.extend((0..120).map(|i| Evidence {
+            cost: (5.0 + 0.4 * i as f64).powi(2),
+            dof: 3,
+        }));
+        let m = NoiseModel::estimate(&e, 1e-6);
+        assert!((m.sigma - 0.7).abs() < 0.07, "{m:?}");
+        let rejected_intent = e[..300].iter().filter(|&&x| !m.explains(x)).count();
+        assert!(rejected_intent <= 3, "{rejected_intent} intent relations rejected");
+        assert!(e[300..].iter().all(|&x| !m.explains(x)));
+    }
+
+    #[test]
+    fn the_estimate_holds_when_most_relations_are_broken() {
+        // 60 intent relations with σ = 0.3 among 200 the variations change by 2 to 60.
+        let mut e = intent(60, 5, 0.3, 4);
+        e.extend((0..200).map(|i| Evidence {
+            cost: 5.0 * (2.0 + 0.29 * i as f64).powi(2),
+            dof: 5,
+        }));
+        let m = NoiseModel::estimate(&e, 1e-6);
+        assert!((m.sigma - 0.3).abs() < 0.05, "{m:?}");
+        assert!(e[60..].iter().all(|&x| !m.explains(x)));
+    }
+
+    #[test]
+    fn the_likelihood_ratio_favours_intent_for_noise_and_breakage_for_large_residuals() {
+        let m = NoiseModel {
+            sigma: 1.0,
+            floor: 1e-6,
+            pooled: 0,
+            critical_z: INTENT_Z,
+        };
+        let at = |rms: f64| m.log_likelihood_ratio(Evidence { cost: 3.0 * rms * rms, dof: 3 }, 100.0);
+        assert!(at(1.0) > 2.0, "{}", at(1.0));
+        assert!(at(4.0) < -2.0, "{}", at(4.0));
+        assert!(at(0.5) > at(1.0) && at(1.0) > at(2.0));
+        assert_eq!(m.log_likelihood_ratio(Evidence { cost: 0.0, dof: 0 }, 100.0), 0.0);
+    }
+
+    #[test]
+    fn exact_variations_reject_every_broken_relation() {
+        let mut e = vec![Evidence { cost: 0.0, dof: 2 }; 50];
+        e.push(Evidence { cost: 1e-8, dof: 2 });
+        let m = NoiseModel::estimate(&e, 1e-6);
+        assert_eq!(m.sigma, 1e-6);
+        assert!(!m.explains(e[50]));
+        assert!(m.explains(e[0]));
     }
 }

@@ -1,16 +1,24 @@
 //! Optional parts: parts a variation can do without.
 //!
-//! A part is optional in a variation when removing it leaves the variation's shape unchanged
-//! within a threshold (it is hidden inside others, or shrunk to nothing). The threshold is
-//! relative to the part's own volume in the input, not the model's: in a model of a
-//! thousand parts every small part changes the whole by less than a thousandth. Parts optional in
-//! exactly the same set of variations form one toggle (a Customizer checkbox, on by default).
+//! A part is optional in a variation when the variation's geometry is explained at least as
+//! well without it, under the variations' noise model (`noise`): noise displaces the faces
+//! of the parts a variation has, and a part it does without has no faces to displace, so
+//! without the part, what removing it changes is nothing. What removing it changes, spread
+//! over the part's largest side in the variation, is its *visible thickness*; the part is
+//! dropped when that is within one noise deviation `σ` of nothing (a present part's faces
+//! are rarely that close together by chance) and below half of what the input shows of it,
+//! or, for exact variations, when it changes less than the float tolerance's share of the
+//! part's own volume. So a thin board whose numbers are noisy is still there. A part the
+//! input does not show either (hidden inside others) is never optional: leaving it out
+//! changes no variation, so there is nothing to switch. Parts optional in exactly the same
+//! set of variations form one toggle (a Customizer checkbox, on by default).
 
 use super::discover::Similarity;
-use crate::ir::Model;
+use crate::ir::feature::world_intervals;
+use crate::ir::{Model, Part};
 
 /// Volume changed by removing a part, as a fraction of its own volume in the input, below
-/// which it is optional.
+/// which it is optional whatever the noise.
 pub const OPTIONAL_THRESHOLD: f64 = crate::tolerance::OPTIONAL_PART_LOSS;
 
 /// A group of parts switched together, and the variations that do without them.
@@ -20,18 +28,56 @@ pub struct Toggle {
     pub off_in: Vec<usize>,
 }
 
-/// For each variation, the parts it does without.
+/// A part's box at the slot values `x`: (thinnest extent, largest side's area), from its
+/// world intervals when it has them, else its bounds at the input.
+fn box_at(part: &Part, x: &[f64]) -> (f64, f64) {
+    let extents: [f64; 3] = match world_intervals(part) {
+        Some(iv) => std::array::from_fn(|k| {
+            let at = |n: &crate::ir::Num| n.affine().map_or(n.value, |a| a.eval(x));
+            (at(&iv[k].1) - at(&iv[k].0)).abs()
+        }),
+        None => {
+            let (lo, hi) = part.world_bounds();
+            std::array::from_fn(|k| hi[k] - lo[k])
+        }
+    };
+    let thinnest = extents.iter().copied().fold(f64::INFINITY, f64::min);
+    let area = (0..3)
+        .map(|k| extents[(k + 1) % 3] * extents[(k + 2) % 3])
+        .fold(0.0, f64::max);
+    (thinnest, area)
+}
+
+/// For each variation, the parts it does without, for variations whose faces carry noise
+/// of `sigma` (world units; 0 for exact variations).
 pub fn optional_parts<S: Similarity>(
-    parts: usize,
+    model: &Model,
     variations: &[Vec<f64>],
     sim: &S,
+    sigma: f64,
 ) -> Vec<Vec<usize>> {
+    let x0 = model.slot_values();
+    let input = sim.reference(&x0, &[]);
+    let parts = model.parts.len();
+    let shown: Vec<f64> = (0..parts).map(|p| sim.removal_loss(&input, p)).collect();
+    let at_input: Vec<(f64, f64)> = model.parts.iter().map(|p| box_at(p, &x0)).collect();
     variations
         .iter()
         .map(|v| {
             let whole = sim.reference(v, &[]);
             (0..parts)
-                .filter(|&p| sim.removal_loss(&whole, p) < OPTIONAL_THRESHOLD)
+                .filter(|&p| shown[p] >= OPTIONAL_THRESHOLD)
+                .filter(|&p| {
+                    let loss = sim.removal_loss(&whole, p);
+                    if loss < OPTIONAL_THRESHOLD {
+                        return true;
+                    }
+                    // The visible thickness in `v`, relative to the input's thickness.
+                    let (thickness, area) = at_input[p];
+                    let (_, area_v) = box_at(&model.parts[p], v);
+                    let relative = if area_v > 0.0 { loss * area / area_v } else { loss };
+                    relative < 0.5 * shown[p] && relative * thickness <= sigma
+                })
                 .collect()
         })
         .collect()

@@ -11,7 +11,7 @@ use crate::ir::{FeatureKind, Model};
 use crate::tolerance::Tolerance;
 
 /// Whether two parts' bounding boxes touch or overlap.
-fn touching(model: &Model, a: usize, b: usize, tol: &Tolerance) -> bool {
+pub(crate) fn touching(model: &Model, a: usize, b: usize, tol: &Tolerance) -> bool {
     let (alo, ahi) = model.parts[a].world_bounds();
     let (blo, bhi) = model.parts[b].world_bounds();
     (0..3).all(|k| alo[k] <= bhi[k] + tol.epsilon && blo[k] <= ahi[k] + tol.epsilon)

@@ -132,6 +132,36 @@ impl Faces {
         }
     }
 
+    /// The noise model's metric (`noise`): every face of a part the variation keeps weighs 1,
+    /// so the metric's distance is the faces' displacement in world units, the unit the
+    /// variations' noise lives in, however the author's numbers drive the faces.
+    pub fn noise_metric(&self, skip: &[usize]) -> Metric {
+        let weights: Vec<[f64; 3]> = self
+            .parts
+            .iter()
+            .map(|pf| {
+                if skip.contains(&pf.part) {
+                    [0.0; 3]
+                } else {
+                    [1.0; 3]
+                }
+            })
+            .collect();
+        let mut diagonal = vec![0.0f64; self.slots];
+        for pf in &self.parts {
+            for (lo, hi) in &pf.intervals {
+                for &(s, c) in lo.terms.iter().chain(&hi.terms) {
+                    diagonal[s as usize] += c * c;
+                }
+            }
+        }
+        let scale = diagonal.iter().fold(0.0f64, |m, &v| m.max(v)).max(1.0);
+        Metric {
+            weights,
+            ridge: PROJECTION_RIDGE * scale,
+        }
+    }
+
     /// Every weighted face form of the parts in `entries`: (squared area, form).
     fn weighted_faces<'a>(
         &'a self,
@@ -396,8 +426,22 @@ impl Projector {
         x: &[f64],
         rows: &[&Affine],
     ) -> Vec<(SlotId, f64)> {
+        self.shift_and_cost(faces, basis, blocks, members, x, rows).0
+    }
+
+    /// [`Projector::shift`] and the move's squared length in the metric (`δᵀHδ`, which is
+    /// `eᵀ (n K nᵀ)⁺ e` for the rows' residuals `e`): what projecting onto `rows` costs.
+    pub fn shift_and_cost(
+        &mut self,
+        faces: &Faces,
+        basis: &RowBasis,
+        blocks: &mut SlotBlocks,
+        members: &HashMap<SlotId, Vec<SlotId>>,
+        x: &[f64],
+        rows: &[&Affine],
+    ) -> (Vec<(SlotId, f64)>, f64) {
         if rows.is_empty() {
-            return Vec::new();
+            return (Vec::new(), 0.0);
         }
         let mut touched: Vec<SlotId> = rows
             .iter()
@@ -423,7 +467,8 @@ impl Projector {
             parts.push((root, cols));
         }
         let e = DVector::from_fn(k, |i, _| rows[i].eval(x));
-        let lambda = linalg::pinv(&m) * e;
+        let lambda = linalg::pinv(&m) * &e;
+        let cost = e.dot(&lambda).max(0.0);
         let mut out = Vec::new();
         for (root, cols) in parts {
             let block = &self.blocks[&root];
@@ -434,7 +479,7 @@ impl Projector {
                 }
             }
         }
-        out
+        (out, cost)
     }
 }
 

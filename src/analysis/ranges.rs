@@ -2,11 +2,13 @@
 //!
 //! Start from each free variable's extremes over the input and the projected variations,
 //! widen by a margin, then shrink by interval arithmetic until no setting in the box of
-//! ranges makes any size (an extent, a radius, a length) zero or negative: every size is an
-//! affine function of the free variables, so its minimum over the box is exact
+//! ranges makes any size (an extent, a radius, a length) zero or negative, or separates two
+//! parts the variations keep in contact (`contacts`): every size and every contact side is
+//! an affine function of the free variables, so its minimum over the box is exact
 //! (`c + Σ min(a·lo, a·hi)`). Steps are about a hundredth of a range, rounded to 1, 2 or
 //! 5 × 10^k, and divide the default value where they can.
 
+use super::contacts::ContactSide;
 use super::reparam::Solution;
 use crate::ir::feature::world_intervals;
 use crate::ir::{Affine, Model, Primitive};
@@ -82,8 +84,28 @@ pub fn nice_step(span: f64, value: f64) -> f64 {
     step
 }
 
+/// Passes over the bounds before the box is taken as settled (each pass meets every bound
+/// broken at its start; later bounds can break earlier ones again only by round-off).
+const MAX_SHRINK_PASSES: usize = 200;
+
+/// A bound the sliders must keep: `c + a·free ≥ min` over the whole box of ranges.
+struct Bound {
+    c: f64,
+    a: Vec<f64>,
+    min: f64,
+}
+
 /// Ranges for the free variables given their values at the input and at each variation.
-pub fn ranges(model: &Model, sol: &Solution, input: &[f64], variations: &[Vec<f64>]) -> Vec<Range> {
+/// Every size stays above a fiftieth of its input value, and every contact side above
+/// `−slack` (`contacts`), at every setting in the box.
+pub fn ranges(
+    model: &Model,
+    sol: &Solution,
+    input: &[f64],
+    variations: &[Vec<f64>],
+    contacts: &[ContactSide],
+    slack: f64,
+) -> Vec<Range> {
     let n = sol.free.len();
     let mut lo: Vec<f64> = input.to_vec();
     let mut hi: Vec<f64> = input.to_vec();
@@ -103,50 +125,108 @@ pub fn ranges(model: &Model, sol: &Solution, input: &[f64], variations: &[Vec<f6
         lo[i] -= margin;
         hi[i] += margin;
     }
-    let sizes: Vec<(f64, Vec<f64>, f64)> = size_forms(model)
+    let at = |c: f64, a: &[f64]| c + a.iter().zip(input).map(|(x, y)| x * y).sum::<f64>();
+    let moving = |b: &Bound| b.a.iter().any(|&x| x != 0.0);
+    let sizes: Vec<Bound> = size_forms(model)
         .iter()
         .map(|f| {
             let (c, a) = in_free(f, sol);
-            let at_input = c + a.iter().zip(input).map(|(x, y)| x * y).sum::<f64>();
-            (c, a, at_input)
+            let min = 0.02 * at(c, &a);
+            Bound { c, a, min }
         })
+        .filter(moving)
         .collect();
-    for _ in 0..200 {
-        let mut ok = true;
-        for (c, a, at_input) in &sizes {
-            let min = c
-                + (0..n)
-                    .map(|i| (a[i] * lo[i]).min(a[i] * hi[i]))
-                    .sum::<f64>();
-            if min > 0.02 * at_input {
-                continue;
-            }
-            ok = false;
-            for i in 0..n {
-                if a[i] > 0.0 {
-                    lo[i] = input[i] - 0.8 * (input[i] - lo[i]);
-                } else if a[i] < 0.0 {
-                    hi[i] = input[i] + 0.8 * (hi[i] - input[i]);
-                }
-            }
-        }
-        if ok {
-            break;
-        }
-    }
+    let touching: Vec<Bound> = contacts
+        .iter()
+        .map(|side| {
+            let (c, a) = in_free(&side.form, sol);
+            Bound { c, a, min: -slack }
+        })
+        .filter(moving)
+        .collect();
+    // Sizes stay positive everywhere, presets included (they are clamped to the ranges).
+    shrink(&sizes, input, input, &mut lo, &mut hi);
+    // Contacts give up the margin beyond the input and the variations, never a preset: a
+    // contact two variations keep only with other settings of other sliders is the kept
+    // relations' to hold, not the ranges'.
+    let (hull_lo, hull_hi) = hull(input, variations, &lo, &hi);
+    shrink(&touching, &hull_lo, &hull_hi, &mut lo, &mut hi);
     (0..n)
         .map(|i| {
             let step = nice_step(hi[i] - lo[i], input[i]);
-            // Round outward to the step grid, but never past what keeps sizes positive.
+            // Round inward to the step grid, never past what keeps sizes positive, but
+            // keep the input and every preset inside.
             let min = (lo[i] / step).ceil() * step;
             let max = (hi[i] / step).floor() * step;
             Range {
-                min: min.min(input[i]),
-                max: max.max(input[i]),
+                min: min.min(hull_lo[i]),
+                max: max.max(hull_hi[i]),
                 step,
             }
         })
         .collect()
+}
+
+/// The bound's smallest value over the box `[lo, hi]` (exact: it is affine).
+fn box_min(b: &Bound, lo: &[f64], hi: &[f64]) -> f64 {
+    b.c + (0..lo.len())
+        .map(|i| (b.a[i] * lo[i]).min(b.a[i] * hi[i]))
+        .sum::<f64>()
+}
+
+/// The box of the input and the variations, inside the box `[lo, hi]`.
+fn hull(input: &[f64], variations: &[Vec<f64>], lo: &[f64], hi: &[f64]) -> (Vec<f64>, Vec<f64>) {
+    let mut a = input.to_vec();
+    let mut b = input.to_vec();
+    for v in variations {
+        for i in 0..a.len() {
+            a[i] = a[i].min(v[i]).max(lo[i]);
+            b[i] = b[i].max(v[i]).min(hi[i]);
+        }
+    }
+    (a, b)
+}
+
+/// Shrinks the box `[lo, hi]` towards the box `[from_lo, from_hi]` inside it until every
+/// bound holds at every setting in it, or the box is `[from_lo, from_hi]` along every side
+/// that lowers a bound still broken. A bound's minimum over a box is exact
+/// (`c + Σ min(a·lo, a·hi)`). A bound broken there by a deficit `d` pulls in the sides that
+/// lower it, each in proportion to how far past `from` it reaches, by `d` together: no more
+/// is given up than that bound needs. Passes repeat until nothing moves (sides only move
+/// inwards, so this settles).
+fn shrink(bounds: &[Bound], from_lo: &[f64], from_hi: &[f64], lo: &mut [f64], hi: &mut [f64]) {
+    for _ in 0..MAX_SHRINK_PASSES {
+        let mut moved = false;
+        for b in bounds {
+            let deficit = b.min - box_min(b, lo, hi);
+            if deficit <= 0.0 {
+                continue;
+            }
+            // How far each side lowers the bound past the inner box.
+            let lowering: f64 = (0..lo.len())
+                .map(|i| match b.a[i] {
+                    a if a > 0.0 => a * (from_lo[i] - lo[i]),
+                    a if a < 0.0 => a * (from_hi[i] - hi[i]),
+                    _ => 0.0,
+                })
+                .sum();
+            if lowering <= 0.0 {
+                continue;
+            }
+            moved = true;
+            let keep = (1.0 - deficit / lowering).max(0.0);
+            for i in 0..lo.len() {
+                if b.a[i] > 0.0 {
+                    lo[i] = from_lo[i] - keep * (from_lo[i] - lo[i]);
+                } else if b.a[i] < 0.0 {
+                    hi[i] = from_hi[i] + keep * (hi[i] - from_hi[i]);
+                }
+            }
+        }
+        if !moved {
+            return;
+        }
+    }
 }
 
 #[cfg(test)]

@@ -1,12 +1,12 @@
 //! The main job's report: every decision it made, as data and as JSON (`--report`).
 //!
 //! [`Report`] records what was kept and why (the method, each chosen relation with its
-//! evidence, the noise gate, the cutoff and the distortion curve), the free variables with
+//! evidence, the noise model, the cutoff and the distortion curve), the free variables with
 //! their ranges, how well each variation is reproduced and the part switches. It only
 //! presents what the pipeline decided; nothing here computes analysis results.
 
 use crate::analysis::cutoff::Cutoff;
-use crate::analysis::noise::NoiseGate;
+use crate::analysis::noise::NoiseModel;
 use crate::analysis::ranges::Range;
 use serde::Serialize;
 
@@ -33,15 +33,16 @@ pub struct VariationReport {
 #[derive(Debug, Clone, Serialize)]
 pub struct ChosenRelation {
     pub relation: String,
-    /// "structural" (the prior's kind), "other", or "beyond noise" (some variation breaks it).
+    /// The noise test's statistic (standard normal units): how far the variations are from
+    /// keeping it, against their noise; at most the noise model's critical value is intent.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub tier: Option<&'static str>,
+    pub z: Option<f64>,
+    /// The probability that it is intent, given its class's learned share and its evidence.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub intent_probability: Option<f64>,
     /// Its largest residual over the variations (world units).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub residual: Option<f64>,
-    /// The largest loss of IoU its step caused in one variation.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub worst_loss: Option<f64>,
 }
 
 #[derive(Debug, Clone, Serialize)]
@@ -53,8 +54,8 @@ pub struct Report {
     pub method: String,
     /// Chosen constraints in order (all greedy steps, with variations).
     pub chosen: Vec<ChosenRelation>,
-    /// The variations' estimated noise (world units) and the gate it sets.
-    pub noise: Option<NoiseGate>,
+    /// The variations' estimated noise (world units) and the test it sets.
+    pub noise: Option<NoiseModel>,
     pub kept_count: usize,
     pub cutoff: Option<Cutoff>,
     pub distortion_curve: Vec<f64>,

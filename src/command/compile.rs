@@ -9,17 +9,19 @@
 
 use crate::analysis::anchors::project_variations;
 use crate::analysis::candidates::{Candidate, Candidates};
-use crate::analysis::cutoff::{Cutoff, cutoff};
-use crate::analysis::discover::{Sample, Similarity, discover};
+use crate::analysis::classes::sigmoid;
+use crate::analysis::contacts::common_contacts;
+use crate::analysis::cutoff::{Cutoff, change_points};
+use crate::analysis::discover::{Sample, Similarity};
 use crate::analysis::find_candidates_for;
-use crate::analysis::noise::{NoiseGate, noise_gate};
+use crate::analysis::intent::{Selection, estimate_noise, select};
+use crate::analysis::noise::NoiseModel;
 use crate::analysis::optional::{held_where_skipped, optional_parts, toggles};
 use crate::analysis::prior::structural_prior;
 use crate::analysis::project::Faces;
 use crate::analysis::ranges::ranges;
 use crate::analysis::reparam::{Solution, solve};
 use crate::analysis::similarity::VolumeSimilarity;
-use crate::analysis::tiers::{TIER_NAMES, discovery_tiers, plausible_steps};
 use crate::back::diff::unified_diff;
 use crate::back::emit::{EmitPlan, emit};
 use crate::back::plan::{PlanInputs, plan};
@@ -34,9 +36,6 @@ use crate::ir::{Affine, Model};
 use crate::tolerance::{MIN_DISPLAY_SIZE, Tolerance};
 use crate::variation::{Variation, load_variation};
 use std::path::PathBuf;
-
-/// Distortion the variations' own noise explains; a curve below it keeps every constraint.
-pub const DISTORTION_TOLERANCE: f64 = 0.01;
 
 /// How the pipeline chooses and presents (what [`reparameterize`] can be told).
 #[derive(Debug, Clone, Default)]
@@ -137,10 +136,19 @@ pub fn reparameterize(
     let candidates = find_candidates_for(model, &raw);
     // Optional parts: what each variation does without, kept at the input's shape.
     let sim = VolumeSimilarity::new(model);
-    let optional = optional_parts(model.parts.len(), &raw, &sim);
+    let faces = Faces::of(model);
+    let floor = Tolerance::for_size(model.size()).epsilon;
+    let whole: Vec<Sample> = raw
+        .iter()
+        .map(|v| Sample {
+            values: v.clone(),
+            optional: Vec::new(),
+        })
+        .collect();
+    let sigma = estimate_noise(&faces, &candidates, &whole, floor).sigma;
+    let optional = optional_parts(model, &raw, &sim, sigma);
     let values = held_where_skipped(model, &raw, &optional);
     // Discovery (or the prior): which relations to keep.
-    let faces = Faces::of(model);
     let choice = if variations.is_empty() {
         by_prior(model, &candidates, options.all_constraints)
     } else {
@@ -156,8 +164,24 @@ pub fn reparameterize(
     let solution = solve(model, &rows);
     let projected = project_variations(model, &faces, &rows, &values, &optional);
     // Emit: sliders, blends and switches, the file and its presets.
-    let (input_free, variation_free) = free_values(model, &solution, &projected);
-    let slider_ranges = ranges(model, &solution, &input_free, &variation_free);
+    let (input_free, mut variation_free) = free_values(model, &solution, &projected);
+    let tolerance = Tolerance::for_size(model.size());
+    let contacts = common_contacts(model, &raw, &optional, contact_slack(&choice, tolerance));
+    let slider_ranges = ranges(
+        model,
+        &solution,
+        &input_free,
+        &variation_free,
+        &contacts,
+        tolerance.epsilon,
+    );
+    // Presets are the projected variations inside the ranges: every size positive and
+    // every kept contact closed there too.
+    for v in &mut variation_free {
+        for (x, r) in v.iter_mut().zip(&slider_ranges) {
+            *x = x.clamp(r.min, r.max);
+        }
+    }
     let plan = plan(&PlanInputs {
         sources,
         loaded,
@@ -198,6 +222,14 @@ pub fn reparameterize(
     }
 }
 
+/// How far apart two parts may be in a variation and still count as touching: what the
+/// variations' noise explains for the gap between two faces.
+fn contact_slack(choice: &Choice, tolerance: Tolerance) -> f64 {
+    choice.noise.map_or(tolerance.epsilon, |n| {
+        (n.critical_z * n.sigma * std::f64::consts::SQRT_2).max(tolerance.epsilon)
+    })
+}
+
 /// Which candidates are kept, and how they were chosen (for the report).
 struct Choice {
     /// Indices into the candidates, in the order chosen.
@@ -206,7 +238,7 @@ struct Choice {
     chosen: Vec<ChosenRelation>,
     cutoff: Option<Cutoff>,
     curve: Vec<f64>,
-    noise: Option<NoiseGate>,
+    noise: Option<NoiseModel>,
 }
 
 /// Without variations: the structural prior, or every base constraint.
@@ -226,9 +258,9 @@ fn by_prior(model: &Model, candidates: &Candidates, all_constraints: bool) -> Ch
         .iter()
         .map(|&i| ChosenRelation {
             relation: candidates.describe(&candidates.list[i]),
-            tier: None,
+            z: None,
+            intent_probability: None,
             residual: None,
-            worst_loss: None,
         })
         .collect();
     Choice {
@@ -241,8 +273,8 @@ fn by_prior(model: &Model, candidates: &Candidates, all_constraints: bool) -> Ch
     }
 }
 
-/// With variations: greedy discovery in tiers behind the noise gate, cut where the
-/// distortion curve jumps.
+/// With variations: the noise model's sequential test (`analysis::intent`), cut at the
+/// first relation the noise does not explain.
 fn by_discovery(
     model: &Model,
     candidates: &Candidates,
@@ -259,30 +291,50 @@ fn by_discovery(
             optional: o.clone(),
         })
         .collect();
-    let tolerance = Tolerance::for_size(model.size());
-    let gate = noise_gate(candidates, &samples, tolerance);
-    let tiers = discovery_tiers(model, candidates, &gate, tolerance);
-    let disc = discover(faces, candidates, &samples, model.slots.len(), sim, &tiers);
-    let plausible = plausible_steps(&disc.tiers);
-    let c = cutoff(&disc.curve, DISTORTION_TOLERANCE, plausible);
-    let chosen = disc
+    let sel = select(model, faces, candidates, &samples, sim);
+    let chosen = sel
         .order
         .iter()
-        .zip(disc.tiers.iter().zip(&disc.worst))
-        .map(|(&i, (&t, &w))| ChosenRelation {
+        .zip(sel.z.iter().zip(&sel.log_odds))
+        .map(|(&i, (&z, &odds))| ChosenRelation {
             relation: candidates.describe(&candidates.list[i]),
-            tier: Some(TIER_NAMES[t as usize]),
-            residual: Some(gate.residual[i]),
-            worst_loss: Some(w),
+            z: z.is_finite().then_some(z),
+            intent_probability: Some(sigmoid(odds)),
+            residual: Some(sel.residual[i]),
         })
         .collect();
     Choice {
-        kept: disc.order[..c.keep].to_vec(),
-        method: "greedy discovery from variations".to_string(),
+        kept: sel.order[..sel.accepted].to_vec(),
+        method: "noise-model test of relations against the variations".to_string(),
         chosen,
-        cutoff: Some(c),
-        curve: disc.curve,
-        noise: Some(gate),
+        cutoff: Some(test_cutoff(candidates, &sel)),
+        curve: sel.curve,
+        noise: Some(sel.noise),
+    }
+}
+
+/// The cutoff the test made, with the paper's change points on the same curve beside it.
+fn test_cutoff(candidates: &Candidates, sel: &Selection) -> Cutoff {
+    let (paper, published) = change_points(&sel.curve);
+    let keep = sel.accepted;
+    let sigma = sel.noise.sigma;
+    let reason = match sel.order.get(keep) {
+        None => format!(
+            "every relation is more likely intent than not under the variations' noise (σ = {sigma:.3} world units)"
+        ),
+        Some(&c) => format!(
+            "relation {} ({}) is more likely broken than intent (odds {:.3} to 1, its residuals {:.1} noise deviations off; noise σ = {sigma:.3} world units)",
+            keep + 1,
+            candidates.describe(&candidates.list[c]),
+            sel.log_odds[keep].exp(),
+            sel.z[keep],
+        ),
+    };
+    Cutoff {
+        keep,
+        paper,
+        published,
+        reason,
     }
 }
 

@@ -126,7 +126,7 @@ pub fn evaluate(name: &str, seed: u64) -> Row {
     let candidates = find_candidates(&model);
     let sim = VolumeSimilarity::new(&model);
     let clean_values: Vec<Vec<f64>> = clean.iter().map(|v| v.values.clone()).collect();
-    let optional = optional_parts(model.parts.len(), &clean_values, &sim);
+    let optional = optional_parts(&model, &clean_values, &sim, 0.0);
     let tol = 1e-6 * size;
     // The clean truth: relations every clean variation keeps (ignoring parts it does without).
     let common: Vec<&Affine> = candidates
@@ -195,8 +195,8 @@ fn trace(
     let r = &compiled.report;
     if let Some(g) = &r.noise {
         eprintln!(
-            "{}: noise level {:.4} threshold {:.4}",
-            r.model, g.level, g.threshold
+            "{}: noise sigma {:.4} (pooled over {} relations), critical z {:.2}",
+            r.model, g.sigma, g.pooled, g.critical_z
         );
     }
     if let Some(c) = &r.cutoff {
@@ -232,17 +232,16 @@ fn trace(
             })
         });
         eprintln!(
-            "{:>3} {:<6} {:<12} res {:>8.4} clean {:>8.4} worst {:>8.5} curve {:>8.5} reach {:.4}  {}",
+            "{:>3} {:<6} {:<12} res {:>8.4} clean {:>8.4} curve {:>8.5} reach {:.4}  {}",
             s + 1,
             match truth {
                 Some(true) => "true",
                 Some(false) => "FALSE",
                 None => "?",
             },
-            ch.tier.unwrap_or(""),
+            ch.z.map_or(String::new(), |z| format!("z {z:.2}")),
             ch.residual.unwrap_or(0.0),
             clean_residual,
-            ch.worst_loss.unwrap_or(0.0),
             r.distortion_curve[s + 1],
             reach(&prefix),
             ch.relation

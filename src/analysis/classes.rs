@@ -1,0 +1,106 @@
+//! How often each class of relation is intent in this model, learned from its variations.
+//!
+//! Under noise, a relation the variations change by less than their noise cannot be told
+//! from an intent one by its own residuals: only how often relations *like it* are intent
+//! can. Every candidate falls in a class by its structure alone: its kind, whether its two
+//! features belong to one part, to parts that touch, or to parts apart, whether the parts
+//! are repeats of each other, and, for equal extents, whether both are measured along the
+//! same axis. No class is judged in advance: each class's share of intent relations is
+//! estimated from this model's own evidence (expectation–maximisation over the two-
+//! hypothesis likelihood of `noise::log_likelihood_ratio`, with a uniform Beta(1, 1)
+//! prior on each share), and becomes the prior odds every relation of the class is tested
+//! with. A relation no variation speaks of (no degree of freedom) is decided by its class's
+//! share alone.
+
+use super::candidates::{Candidates, RelationKind};
+use super::noise::{Evidence, NoiseModel};
+use super::prior::{repeated, touching};
+use crate::ir::{FeatureKind, Model};
+use std::collections::HashMap;
+
+/// Rounds of expectation–maximisation (the shares settle in a few).
+const ROUNDS: usize = 50;
+
+/// The structural class of a candidate (see the module doc).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+struct Class {
+    kind: RelationKind,
+    /// 0: one part; 1: parts that touch; 2: parts apart.
+    parts: u8,
+    repeated: bool,
+    same_axis: bool,
+}
+
+fn class_of(model: &Model, candidates: &Candidates, i: usize) -> Class {
+    let c = &candidates.list[i];
+    let (fa, fb) = (&candidates.features[c.a], &candidates.features[c.b]);
+    let tol = candidates.tolerance;
+    let parts = if fa.part == fb.part {
+        0
+    } else if touching(model, fa.part, fb.part, &tol) {
+        1
+    } else {
+        2
+    };
+    let same_axis = match (fa.kind, fb.kind) {
+        (FeatureKind::Extent { axis: x }, FeatureKind::Extent { axis: y }) => x == y,
+        _ => true,
+    };
+    Class {
+        kind: c.kind,
+        parts,
+        repeated: fa.part != fb.part && repeated(model, fa.part, fb.part, &tol),
+        same_axis,
+    }
+}
+
+/// Per candidate: the log prior odds that it is intent, from its class's learned share.
+pub fn prior_log_odds(
+    model: &Model,
+    candidates: &Candidates,
+    evidence: &[Evidence],
+    noise: &NoiseModel,
+    size: f64,
+) -> Vec<f64> {
+    let n = candidates.list.len();
+    let mut index: HashMap<Class, usize> = HashMap::new();
+    let class: Vec<usize> = (0..n)
+        .map(|i| {
+            let next = index.len();
+            *index.entry(class_of(model, candidates, i)).or_insert(next)
+        })
+        .collect();
+    let llr: Vec<f64> = evidence
+        .iter()
+        .map(|&e| noise.log_likelihood_ratio(e, size))
+        .collect();
+    let mut share = vec![0.5; index.len()];
+    for _ in 0..ROUNDS {
+        let mut intent = vec![0.0; share.len()];
+        let mut count = vec![0.0; share.len()];
+        for i in 0..n {
+            let k = class[i];
+            intent[k] += sigmoid(logit(share[k]) + llr[i]);
+            count[k] += 1.0;
+        }
+        share = intent
+            .iter()
+            .zip(&count)
+            .map(|(w, c)| (w + 1.0) / (c + 2.0))
+            .collect();
+    }
+    class.iter().map(|&k| logit(share[k])).collect()
+}
+
+pub fn logit(p: f64) -> f64 {
+    (p / (1.0 - p)).ln()
+}
+
+pub fn sigmoid(x: f64) -> f64 {
+    if x >= 0.0 {
+        1.0 / (1.0 + (-x).exp())
+    } else {
+        let e = x.exp();
+        e / (1.0 + e)
+    }
+}

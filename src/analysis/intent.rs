@@ -1,0 +1,391 @@
+//! Which relations are intent: discovery as one sequential test against the noise model.
+//!
+//! Every candidate's evidence is what projecting the variations onto it costs in the noise
+//! model's metric (`noise`): the squared face displacement that makes it hold, summed over
+//! the variations that keep both its parts. The noise `σ` is estimated from that evidence,
+//! and so is how often each class of relation is intent (`classes`). A candidate's log
+//! posterior odds of being intent are its class's prior odds plus its evidence's likelihood
+//! ratio (noise against a change of unknown scale). Step by step, the candidate most likely
+//! intent is taken and every variation is moved onto it, so later evidence is measured from
+//! points that satisfy everything taken before: a chain of relations that are each within
+//! the noise but together are not stops where the chain breaks. The first step whose odds
+//! are not in favour is the cutoff; steps go on past it only to draw the distortion curve
+//! (1 − mean IoU of the moved variations to the originals) for the report, and the paper's
+//! change points on that curve are reported beside the test's answer.
+//!
+//! What keeps it fast: candidates every variation already satisfies (within the tolerance
+//! relations hold within) are taken together without scoring; a candidate's evidence is
+//! scored again only when a slot of it moved or a row was chosen on one of its slots, and
+//! the best one is always scored afresh before it is taken; projections factor only the
+//! slot blocks they touch (`project`).
+
+use super::candidates::Candidates;
+use super::classes::prior_log_odds;
+use super::chosen::{Chosen, candidates_by_slot, forget, rows_of};
+use super::discover::{Sample, Similarity};
+use super::noise::{Evidence, NoiseModel};
+use super::pool::Pool;
+use super::project::{Faces, Projector};
+use crate::ir::{Affine, Model};
+use crate::tolerance::{RELATIVE_ROUNDOFF, Tolerance};
+
+/// The order the test took the candidates in, its statistics and its answer.
+#[derive(Debug, Clone)]
+pub struct Selection {
+    /// Candidate indices in the order taken.
+    pub order: Vec<usize>,
+    /// Each step's χ² statistic in standard normal units (how far the variations are from
+    /// keeping it, against their noise).
+    pub z: Vec<f64>,
+    /// Each step's log posterior odds that it is intent (positive: intent).
+    pub log_odds: Vec<f64>,
+    /// `curve[s]` = 1 − mean IoU of the variations moved onto the first `s` steps to the
+    /// originals (`curve[0]` = 0).
+    pub curve: Vec<f64>,
+    /// For each step, the candidates that became implied.
+    pub implied: Vec<Vec<usize>>,
+    /// The first `accepted` steps are intent.
+    pub accepted: usize,
+    pub noise: NoiseModel,
+    /// Per candidate: its largest residual over the variations that keep both its parts
+    /// (world units).
+    pub residual: Vec<f64>,
+}
+
+/// One variation during the selection: where it is and what projecting it needs.
+struct Point<'a, R> {
+    sample: &'a Sample,
+    projector: Projector,
+    current: Vec<f64>,
+    /// The original variation prepared for IoU (made when it first moves).
+    original: Option<R>,
+    fidelity: f64,
+}
+
+/// What a selection step looks at: the model's faces, the candidates and what is fixed
+/// about them for the whole selection.
+struct Context<'a> {
+    faces: &'a Faces,
+    candidates: &'a Candidates,
+    by_slot: Vec<Vec<u32>>,
+    /// Per candidate, per variation: whether the variation keeps both its parts.
+    seen: Vec<Vec<bool>>,
+    /// Per candidate: its degrees of freedom (rows × variations that keep both parts).
+    dof: Vec<usize>,
+    /// Moves below this are round-off; residuals below `holds` mean the relation holds.
+    roundoff: f64,
+    holds: f64,
+    /// Per candidate: the log prior odds that it is intent (its class's learned share).
+    prior: Vec<f64>,
+    /// The model's size: the largest residual scale a broken relation may have.
+    size: f64,
+}
+
+impl Context<'_> {
+    /// Whether every variation that keeps the candidate's parts satisfies it already (for a
+    /// candidate no variation speaks of: whether the prior keeps it).
+    fn exact<R>(&self, c: usize, points: &[Point<'_, R>]) -> bool {
+        if self.dof[c] == 0 {
+            return self.prior[c] > 0.0;
+        }
+        let rows = rows_of(self.candidates, c);
+        points
+            .iter()
+            .zip(&self.seen[c])
+            .filter(|(_, seen)| **seen)
+            .all(|(p, _)| rows.iter().all(|r| r.eval(&p.current).abs() <= self.holds))
+    }
+
+    /// The candidate's evidence at the variations' current points.
+    fn evidence<R>(&self, c: usize, points: &mut [Point<'_, R>], chosen: &mut Chosen) -> Evidence {
+        let rows = rows_of(self.candidates, c);
+        let mut cost = 0.0;
+        for (p, &seen) in points.iter_mut().zip(&self.seen[c]) {
+            if seen {
+                cost += chosen.shift(&mut p.projector, self.faces, &p.current, &rows).1;
+            }
+        }
+        Evidence {
+            cost,
+            dof: self.dof[c],
+        }
+    }
+}
+
+/// The scores kept between steps: each candidate's evidence, and the step it was scored at.
+struct Scores {
+    evidence: Vec<Option<Evidence>>,
+    scored_at: Vec<usize>,
+}
+
+/// The variations' noise as the candidates' evidence at the variations themselves tells it
+/// (before any is taken), for what must be decided before the test runs (optional parts).
+pub fn estimate_noise(
+    faces: &Faces,
+    candidates: &Candidates,
+    samples: &[Sample],
+    floor: f64,
+) -> NoiseModel {
+    let cx = context(faces, candidates, samples);
+    let mut chosen = Chosen::new(faces);
+    let mut points = start_points::<()>(faces, samples);
+    let evidence: Vec<Evidence> = (0..candidates.list.len())
+        .map(|c| cx.evidence(c, &mut points, &mut chosen))
+        .collect();
+    NoiseModel::estimate(&evidence, floor)
+}
+
+/// Every variation at its own values, projected in the noise model's metric.
+fn start_points<'a, R>(faces: &Faces, samples: &'a [Sample]) -> Vec<Point<'a, R>> {
+    samples
+        .iter()
+        .map(|s| Point {
+            sample: s,
+            projector: Projector::new(faces.noise_metric(&s.optional)),
+            current: s.values.clone(),
+            original: None,
+            fidelity: 1.0,
+        })
+        .collect()
+}
+
+/// Runs the test to the end (every candidate taken or implied); `floor` is the smallest
+/// noise the variations are taken to have (the model's float tolerance).
+pub fn select<S: Similarity>(
+    model: &Model,
+    faces: &Faces,
+    candidates: &Candidates,
+    samples: &[Sample],
+    sim: &S,
+) -> Selection {
+    let n = candidates.list.len();
+    let floor = Tolerance::for_size(model.size()).epsilon;
+    let mut cx = context(faces, candidates, samples);
+    cx.size = model.size();
+    let mut chosen = Chosen::new(faces);
+    let mut pool = Pool::new(&vec![0; n], |i| !chosen.implies(&rows_of(candidates, i)));
+    let mut points = start_points::<S::Reference>(faces, samples);
+    let mut scores = Scores {
+        evidence: vec![None; n],
+        scored_at: vec![0; n],
+    };
+    for c in (0..n).filter(|&c| pool.is_alive(c)) {
+        scores.evidence[c] = Some(cx.evidence(c, &mut points, &mut chosen));
+    }
+    let all: Vec<Evidence> = (0..n)
+        .map(|c| scores.evidence[c].unwrap_or(Evidence { cost: 0.0, dof: 0 }))
+        .collect();
+    let noise = NoiseModel::estimate(&all, floor);
+    cx.prior = prior_log_odds(model, candidates, &all, &noise, cx.size);
+    let mut out = Selection {
+        order: Vec::new(),
+        z: Vec::new(),
+        log_odds: Vec::new(),
+        curve: vec![0.0],
+        implied: Vec::new(),
+        accepted: 0,
+        noise,
+        residual: (0..n).map(|c| largest_residual(&cx, c, samples)).collect(),
+    };
+    let mut cut: Option<usize> = None;
+    let mut exact: Vec<bool> = (0..n).map(|c| pool.is_alive(c) && cx.exact(c, &points)).collect();
+    while pool.lowest_tier().is_some() && !samples.is_empty() {
+        let step = out.order.len() + 1;
+        let mut gone = Vec::new();
+        let batch: Vec<usize> = (0..n).filter(|&c| pool.is_alive(c) && exact[c]).collect();
+        if !batch.is_empty() {
+            for c in batch {
+                pool.kill(c);
+                let rows = rows_of(candidates, c);
+                if chosen.implies(&rows) {
+                    gone.push(c);
+                    continue;
+                }
+                chosen.add(&rows, &mut projectors(&mut points));
+                forget(&mut scores.evidence, &cx.by_slot, slots_of(&rows));
+                let same = out.curve.last().copied().unwrap_or(0.0);
+                out.push(c, f64::NEG_INFINITY, f64::INFINITY, same);
+            }
+        } else {
+            let Some((c, odds, z)) =
+                best(&cx, &noise, &mut pool, &mut points, &mut chosen, &mut scores, step)
+            else {
+                break;
+            };
+            if odds <= 0.0 && cut.is_none() {
+                cut = Some(out.order.len());
+            }
+            let rows = rows_of(candidates, c);
+            let moved = move_points(&cx, &mut points, &mut chosen, &rows, sim);
+            for &s in &moved {
+                for &k in &cx.by_slot[s as usize] {
+                    let k = k as usize;
+                    exact[k] = pool.is_alive(k) && cx.exact(k, &points);
+                }
+            }
+            forget(&mut scores.evidence, &cx.by_slot, moved.into_iter().chain(slots_of(&rows)));
+            chosen.add(&rows, &mut projectors(&mut points));
+            pool.kill(c);
+            let mean = points.iter().map(|p| p.fidelity).sum::<f64>() / points.len() as f64;
+            out.push(c, z, odds, 1.0 - mean);
+        }
+        chosen.refresh_members();
+        chosen.drop_implied(candidates, &cx.by_slot, &mut pool, &mut gone);
+        gone.sort_unstable();
+        if let Some(last) = out.implied.last_mut() {
+            last.extend(gone);
+        }
+    }
+    out.accepted = cut.unwrap_or(out.order.len());
+    out
+}
+
+impl Selection {
+    fn push(&mut self, c: usize, z: f64, log_odds: f64, curve: f64) {
+        self.order.push(c);
+        self.z.push(z);
+        self.log_odds.push(log_odds);
+        self.curve.push(curve);
+        self.implied.push(Vec::new());
+    }
+}
+
+/// What the selection knows before its first step.
+fn context<'a>(
+    faces: &'a Faces,
+    candidates: &'a Candidates,
+    samples: &[Sample],
+) -> Context<'a> {
+    let scale = samples
+        .iter()
+        .flat_map(|s| s.values.iter())
+        .fold(1.0f64, |m, v| m.max(v.abs()));
+    let roundoff = RELATIVE_ROUNDOFF * scale;
+    let seen: Vec<Vec<bool>> = candidates
+        .list
+        .iter()
+        .map(|c| {
+            let parts = [candidates.features[c.a].part, candidates.features[c.b].part];
+            samples
+                .iter()
+                .map(|s| !parts.iter().any(|p| s.optional.contains(p)))
+                .collect()
+        })
+        .collect();
+    let dof = candidates
+        .list
+        .iter()
+        .zip(&seen)
+        .map(|(c, seen)| c.rows.len() * seen.iter().filter(|s| **s).count())
+        .collect();
+    Context {
+        faces,
+        candidates,
+        by_slot: candidates_by_slot(candidates, faces.slots()),
+        seen,
+        dof,
+        roundoff,
+        holds: candidates.tolerance.epsilon.max(roundoff),
+        prior: vec![0.0; candidates.list.len()],
+        size: 1.0,
+    }
+}
+
+/// The alive candidate most likely intent, scored afresh at this step, with its log
+/// posterior odds and test statistic (the first in list order among equals).
+fn best<R>(
+    cx: &Context<'_>,
+    noise: &NoiseModel,
+    pool: &mut Pool,
+    points: &mut [Point<'_, R>],
+    chosen: &mut Chosen,
+    scores: &mut Scores,
+    step: usize,
+) -> Option<(usize, f64, f64)> {
+    let alive: Vec<usize> = pool.members(0).collect();
+    for &c in &alive {
+        if scores.evidence[c].is_none() {
+            scores.evidence[c] = Some(cx.evidence(c, points, chosen));
+            scores.scored_at[c] = step;
+        }
+    }
+    // A score kept from an earlier step may be stale (rows chosen elsewhere in its block
+    // change its conditional variance): the winner is scored again until it is fresh.
+    loop {
+        let (c, odds) = alive
+            .iter()
+            .filter_map(|&c| Some((c, log_odds(cx, noise, c, scores.evidence[c]?))))
+            .min_by(|a, b| b.1.total_cmp(&a.1).then(a.0.cmp(&b.0)))?;
+        if scores.scored_at[c] == step {
+            let z = scores.evidence[c].map_or(f64::NAN, |e| noise.z(e));
+            return Some((c, odds, z));
+        }
+        scores.evidence[c] = Some(cx.evidence(c, points, chosen));
+        scores.scored_at[c] = step;
+    }
+}
+
+/// The log posterior odds that candidate `c` with evidence `e` is intent: its class's prior
+/// odds plus the evidence's likelihood ratio (the prior alone when no variation has both
+/// its parts).
+fn log_odds(cx: &Context<'_>, noise: &NoiseModel, c: usize, e: Evidence) -> f64 {
+    cx.prior[c] + noise.log_likelihood_ratio(e, cx.size)
+}
+
+/// Moves every variation onto the chosen rows plus `rows` and updates its IoU to the
+/// original. Returns the slots that moved beyond round-off in some variation.
+fn move_points<S: Similarity>(
+    cx: &Context<'_>,
+    points: &mut [Point<'_, S::Reference>],
+    chosen: &mut Chosen,
+    rows: &[&Affine],
+    sim: &S,
+) -> Vec<u32> {
+    let mut moved_any: Vec<u32> = Vec::new();
+    for p in points.iter_mut() {
+        let (shift, _) = chosen.shift(&mut p.projector, cx.faces, &p.current, rows);
+        let mut moved = false;
+        for (s, delta) in shift {
+            p.current[s as usize] += delta;
+            if delta.abs() > cx.roundoff {
+                moved = true;
+                moved_any.push(s);
+            }
+        }
+        if moved {
+            let away: Vec<u32> = (0..p.current.len() as u32)
+                .filter(|&s| p.current[s as usize] != p.sample.values[s as usize])
+                .collect();
+            let original = p
+                .original
+                .get_or_insert_with(|| sim.reference(&p.sample.values, &p.sample.optional));
+            p.fidelity = sim.similarity_changed(&p.current, &away, original);
+        }
+    }
+    moved_any.sort_unstable();
+    moved_any.dedup();
+    moved_any
+}
+
+/// Every variation's projector, for [`Chosen::add`].
+fn projectors<'v, R>(points: &'v mut [Point<'_, R>]) -> Vec<&'v mut Projector> {
+    points.iter_mut().map(|p| &mut p.projector).collect()
+}
+
+/// The slots `rows` hold.
+fn slots_of(rows: &[&Affine]) -> Vec<u32> {
+    let mut slots: Vec<u32> = rows.iter().flat_map(|r| r.slots()).collect();
+    slots.sort_unstable();
+    slots.dedup();
+    slots
+}
+
+/// The largest residual of candidate `c` over the variations that keep both its parts.
+fn largest_residual(cx: &Context<'_>, c: usize, samples: &[Sample]) -> f64 {
+    samples
+        .iter()
+        .zip(&cx.seen[c])
+        .filter(|(_, seen)| **seen)
+        .flat_map(|(s, _)| cx.candidates.list[c].rows.iter().map(|r| r.eval(&s.values).abs()))
+        .fold(0.0, f64::max)
+}
