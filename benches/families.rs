@@ -98,7 +98,13 @@ fn main() {
     for setup in setups {
         let results: Vec<Result<FamilyResult, String>> = seeds
             .par_iter()
-            .map(|&s| evaluate_family(s, setup, true))
+            .map(|&s| {
+                let r = evaluate_family(s, setup, true);
+                if tracing {
+                    eprintln!("seed {s} done");
+                }
+                r
+            })
             .collect();
         let mut ok = Vec::new();
         for r in results {

@@ -101,7 +101,12 @@ fn openscad_reads_the_parts_the_generator_wrote() {
 fn rates_of_the_main_job_on_the_fixed_seeds() {
     let results: Vec<_> = SEEDS
         .into_par_iter()
-        .map(|seed| evaluate_family(seed, MAIN, false))
+        .map(|seed| {
+            let start = std::time::Instant::now();
+            let r = evaluate_family(seed, MAIN, false);
+            eprintln!("seed {seed} done in {:.1}s", start.elapsed().as_secs_f64());
+            r
+        })
         .collect();
     let failed: Vec<&String> = results.iter().filter_map(|r| r.as_ref().err()).collect();
     assert!(failed.is_empty(), "families that did not run: {failed:?}");
