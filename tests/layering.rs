@@ -63,6 +63,23 @@ const ALLOWED: &[(&str, &[&str])] = &[
             "variation",
         ],
     ),
+    (
+        "families",
+        &[
+            "analysis",
+            "back",
+            "command",
+            "fit",
+            "front",
+            "geom",
+            "ir",
+            "output",
+            "render",
+            "span",
+            "tolerance",
+            "variation",
+        ],
+    ),
 ];
 
 fn src() -> PathBuf {

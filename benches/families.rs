@@ -1,0 +1,129 @@
+//! Prints the rates of the main job and of the paper's plain method on random model
+//! families (`reparamc::families`): reach, coherence, sliders against the intent
+//! dimension, toggles, presets, time — at 1% noise with 3 training variations, and rows for
+//! 0.5% and 2% noise and for 2 and 5 training variations.
+//!
+//! `FAMILIES_SEEDS=a..b` (or a count, `FAMILIES_SEEDS=50`) picks the families (200 by
+//! default); `FAMILIES_ROWS=main` runs only the main condition; `FAMILIES_TRACE=1` prints
+//! every family's scores; `FAMILIES_DUMP=seed` prints one family's model in every style.
+
+use rayon::prelude::*;
+use reparamc::families::rates::{header, rates, row};
+use reparamc::families::run::{FamilyResult, Setup, evaluate_family};
+
+fn seeds() -> Vec<u64> {
+    let spec = std::env::var("FAMILIES_SEEDS").unwrap_or_else(|_| "200".into());
+    match spec.split_once("..") {
+        Some((a, b)) => {
+            let a: u64 = a.trim().parse().expect("FAMILIES_SEEDS=a..b");
+            let b: u64 = b.trim().parse().expect("FAMILIES_SEEDS=a..b");
+            (a..b).collect()
+        }
+        None => (0..spec.trim().parse::<u64>().expect("FAMILIES_SEEDS=count")).collect(),
+    }
+}
+
+fn trace(setup: Setup, r: &FamilyResult) {
+    for (method, s) in [("ours", &r.ours), ("paper", &r.paper)] {
+        eprintln!(
+            "seed {} {} parts {} noise {} train {} {method}: d {} dim {} iou {:.4} broken {}{} false toggles {:?} missed {:?} preset {:?} {:.3}s",
+            r.seed,
+            r.style.name(),
+            r.parts,
+            setup.noise,
+            setup.training,
+            s.d,
+            s.dimension,
+            s.worst_iou,
+            s.broken_settings,
+            s.first_break
+                .as_ref()
+                .map_or(String::new(), |b| format!(" ({b})")),
+            s.false_toggles,
+            s.missed_optional,
+            s.bad_preset,
+            s.seconds
+        );
+    }
+}
+
+fn main() {
+    if !std::env::args().any(|a| a == "--bench") {
+        eprintln!("families: run `cargo bench --bench families` for the table");
+        return;
+    }
+    // `FAMILIES_DUMP=seed` prints that family's input text in every style and stops.
+    if let Ok(seed) = std::env::var("FAMILIES_DUMP") {
+        let seed: u64 = seed.parse().expect("FAMILIES_DUMP=seed");
+        let f = reparamc::families::Family::generate(seed, 3).expect("a family");
+        eprintln!(
+            "seed {seed}: d {} ({:?}), style {}",
+            f.dimension(),
+            f.names(),
+            f.style.name()
+        );
+        for style in reparamc::families::style::Style::ALL {
+            println!("// ---- {}\n{}", style.name(), f.input_text(style));
+        }
+        return;
+    }
+    let seeds = seeds();
+    let main_only = std::env::var("FAMILIES_ROWS").is_ok_and(|r| r == "main");
+    let mut setups = vec![Setup {
+        noise: 0.01,
+        training: 3,
+    }];
+    if !main_only {
+        setups.extend([
+            Setup {
+                noise: 0.005,
+                training: 3,
+            },
+            Setup {
+                noise: 0.02,
+                training: 3,
+            },
+            Setup {
+                noise: 0.01,
+                training: 2,
+            },
+            Setup {
+                noise: 0.01,
+                training: 5,
+            },
+        ]);
+    }
+    let tracing = std::env::var_os("FAMILIES_TRACE").is_some();
+    print!("{}", header());
+    for setup in setups {
+        let results: Vec<Result<FamilyResult, String>> = seeds
+            .par_iter()
+            .map(|&s| {
+                let r = evaluate_family(s, setup, true);
+                if tracing {
+                    eprintln!("seed {s} done");
+                }
+                r
+            })
+            .collect();
+        let mut ok = Vec::new();
+        for r in results {
+            match r {
+                Ok(r) => {
+                    if tracing {
+                        trace(setup, &r);
+                    }
+                    ok.push(r);
+                }
+                Err(e) => eprintln!("skipped: {e}"),
+            }
+        }
+        let condition = format!(
+            "{}% noise, {} training",
+            setup.noise * 100.0,
+            setup.training
+        );
+        print!("{}", row(&condition, "reparamc", &rates(&ok, |r| &r.ours)));
+        print!("{}", row(&condition, "paper", &rates(&ok, |r| &r.paper)));
+    }
+}
