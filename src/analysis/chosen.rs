@@ -78,14 +78,7 @@ impl Chosen {
         x: &[f64],
         rows: &[&Affine],
     ) -> (Vec<(SlotId, f64)>, f64) {
-        projector.shift_and_cost(
-            faces,
-            &self.basis,
-            &mut self.blocks,
-            &self.members,
-            x,
-            rows,
-        )
+        projector.shift_and_cost(faces, &self.basis, &mut self.blocks, &self.members, x, rows)
     }
 
     /// Whether the chosen rows imply every one of `rows`.
@@ -138,7 +131,11 @@ pub fn candidates_by_slot(candidates: &Candidates, slots: usize) -> Vec<Vec<u32>
 }
 
 /// Forgets the cached scores of every candidate holding one of `slots`.
-pub fn forget<T>(cache: &mut [Option<T>], by_slot: &[Vec<u32>], slots: impl IntoIterator<Item = u32>) {
+pub fn forget<T>(
+    cache: &mut [Option<T>],
+    by_slot: &[Vec<u32>],
+    slots: impl IntoIterator<Item = u32>,
+) {
     for s in slots {
         for &k in &by_slot[s as usize] {
             cache[k as usize] = None;

@@ -59,12 +59,12 @@ pub fn common_contacts(
                     .filter(|(_, skip)| !skip.contains(&a) && !skip.contains(&b))
                     .all(|(v, _)| meets(v));
             if kept {
-                out.extend(
-                    sides
-                        .into_iter()
-                        .filter(|f| !f.is_constant())
-                        .map(|form| ContactSide { parts: [a, b], form }),
-                );
+                out.extend(sides.into_iter().filter(|f| !f.is_constant()).map(|form| {
+                    ContactSide {
+                        parts: [a, b],
+                        form,
+                    }
+                }));
             }
         }
     }

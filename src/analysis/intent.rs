@@ -20,8 +20,8 @@
 //! slot blocks they touch (`project`).
 
 use super::candidates::Candidates;
-use super::classes::prior_log_odds;
 use super::chosen::{Chosen, candidates_by_slot, forget, rows_of};
+use super::classes::prior_log_odds;
 use super::discover::{Sample, Similarity};
 use super::noise::{Evidence, NoiseModel};
 use super::pool::Pool;
@@ -40,7 +40,7 @@ pub struct Selection {
     /// Each step's log posterior odds that it is intent (positive: intent).
     pub log_odds: Vec<f64>,
     /// `curve[s]` = 1 − mean IoU of the variations moved onto the first `s` steps to the
-    /// originals (`curve[0]` = 0).
+    /// originals (`curve[0]` = 0); empty when no similarity was given to measure it.
     pub curve: Vec<f64>,
     /// For each step, the candidates that became implied.
     pub implied: Vec<Vec<usize>>,
@@ -102,7 +102,9 @@ impl Context<'_> {
         let mut cost = 0.0;
         for (p, &seen) in points.iter_mut().zip(&self.seen[c]) {
             if seen {
-                cost += chosen.shift(&mut p.projector, self.faces, &p.current, &rows).1;
+                cost += chosen
+                    .shift(&mut p.projector, self.faces, &p.current, &rows)
+                    .1;
             }
         }
         Evidence {
@@ -149,14 +151,15 @@ fn start_points<'a, R>(faces: &Faces, samples: &'a [Sample]) -> Vec<Point<'a, R>
         .collect()
 }
 
-/// Runs the test to the end (every candidate taken or implied); `floor` is the smallest
-/// noise the variations are taken to have (the model's float tolerance).
+/// Runs the test to the end (every candidate taken or implied). With `sim`, the distortion
+/// curve is measured along the way (exact IoU after every step, most of the time taken);
+/// the decisions do not depend on it.
 pub fn select<S: Similarity>(
     model: &Model,
     faces: &Faces,
     candidates: &Candidates,
     samples: &[Sample],
-    sim: &S,
+    sim: Option<&S>,
 ) -> Selection {
     let n = candidates.list.len();
     let floor = Tolerance::for_size(model.size()).epsilon;
@@ -181,14 +184,16 @@ pub fn select<S: Similarity>(
         order: Vec::new(),
         z: Vec::new(),
         log_odds: Vec::new(),
-        curve: vec![0.0],
+        curve: if sim.is_some() { vec![0.0] } else { Vec::new() },
         implied: Vec::new(),
         accepted: 0,
         noise,
         residual: (0..n).map(|c| largest_residual(&cx, c, samples)).collect(),
     };
     let mut cut: Option<usize> = None;
-    let mut exact: Vec<bool> = (0..n).map(|c| pool.is_alive(c) && cx.exact(c, &points)).collect();
+    let mut exact: Vec<bool> = (0..n)
+        .map(|c| pool.is_alive(c) && cx.exact(c, &points))
+        .collect();
     while pool.lowest_tier().is_some() && !samples.is_empty() {
         let step = out.order.len() + 1;
         let mut gone = Vec::new();
@@ -203,13 +208,19 @@ pub fn select<S: Similarity>(
                 }
                 chosen.add(&rows, &mut projectors(&mut points));
                 forget(&mut scores.evidence, &cx.by_slot, slots_of(&rows));
-                let same = out.curve.last().copied().unwrap_or(0.0);
+                let same = out.curve.last().copied();
                 out.push(c, f64::NEG_INFINITY, f64::INFINITY, same);
             }
         } else {
-            let Some((c, odds, z)) =
-                best(&cx, &noise, &mut pool, &mut points, &mut chosen, &mut scores, step)
-            else {
+            let Some((c, odds, z)) = best(
+                &cx,
+                &noise,
+                &mut pool,
+                &mut points,
+                &mut chosen,
+                &mut scores,
+                step,
+            ) else {
                 break;
             };
             if odds <= 0.0 && cut.is_none() {
@@ -223,11 +234,15 @@ pub fn select<S: Similarity>(
                     exact[k] = pool.is_alive(k) && cx.exact(k, &points);
                 }
             }
-            forget(&mut scores.evidence, &cx.by_slot, moved.into_iter().chain(slots_of(&rows)));
+            forget(
+                &mut scores.evidence,
+                &cx.by_slot,
+                moved.into_iter().chain(slots_of(&rows)),
+            );
             chosen.add(&rows, &mut projectors(&mut points));
             pool.kill(c);
             let mean = points.iter().map(|p| p.fidelity).sum::<f64>() / points.len() as f64;
-            out.push(c, z, odds, 1.0 - mean);
+            out.push(c, z, odds, sim.map(|_| 1.0 - mean));
         }
         chosen.refresh_members();
         chosen.drop_implied(candidates, &cx.by_slot, &mut pool, &mut gone);
@@ -241,21 +256,17 @@ pub fn select<S: Similarity>(
 }
 
 impl Selection {
-    fn push(&mut self, c: usize, z: f64, log_odds: f64, curve: f64) {
+    fn push(&mut self, c: usize, z: f64, log_odds: f64, curve: Option<f64>) {
         self.order.push(c);
         self.z.push(z);
         self.log_odds.push(log_odds);
-        self.curve.push(curve);
+        self.curve.extend(curve);
         self.implied.push(Vec::new());
     }
 }
 
 /// What the selection knows before its first step.
-fn context<'a>(
-    faces: &'a Faces,
-    candidates: &'a Candidates,
-    samples: &[Sample],
-) -> Context<'a> {
+fn context<'a>(faces: &'a Faces, candidates: &'a Candidates, samples: &[Sample]) -> Context<'a> {
     let scale = samples
         .iter()
         .flat_map(|s| s.values.iter())
@@ -339,7 +350,7 @@ fn move_points<S: Similarity>(
     points: &mut [Point<'_, S::Reference>],
     chosen: &mut Chosen,
     rows: &[&Affine],
-    sim: &S,
+    sim: Option<&S>,
 ) -> Vec<u32> {
     let mut moved_any: Vec<u32> = Vec::new();
     for p in points.iter_mut() {
@@ -352,7 +363,7 @@ fn move_points<S: Similarity>(
                 moved_any.push(s);
             }
         }
-        if moved {
+        if let (true, Some(sim)) = (moved, sim) {
             let away: Vec<u32> = (0..p.current.len() as u32)
                 .filter(|&s| p.current[s as usize] != p.sample.values[s as usize])
                 .collect();
@@ -386,6 +397,11 @@ fn largest_residual(cx: &Context<'_>, c: usize, samples: &[Sample]) -> f64 {
         .iter()
         .zip(&cx.seen[c])
         .filter(|(_, seen)| **seen)
-        .flat_map(|(s, _)| cx.candidates.list[c].rows.iter().map(|r| r.eval(&s.values).abs()))
+        .flat_map(|(s, _)| {
+            cx.candidates.list[c]
+                .rows
+                .iter()
+                .map(|r| r.eval(&s.values).abs())
+        })
         .fold(0.0, f64::max)
 }

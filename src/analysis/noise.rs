@@ -91,7 +91,8 @@ impl NoiseModel {
             return 0.0;
         }
         let k = e.dof as f64;
-        let log_normal = |v: f64| -0.5 * k * (2.0 * std::f64::consts::PI * v).ln() - e.cost / (2.0 * v);
+        let log_normal =
+            |v: f64| -0.5 * k * (2.0 * std::f64::consts::PI * v).ln() - e.cost / (2.0 * v);
         let noise = self.sigma * self.sigma;
         let (lo, hi) = (self.sigma.ln(), size.max(self.sigma).ln());
         let broken: Vec<f64> = (0..SCALE_GRID)
@@ -200,7 +201,9 @@ mod tests {
         let mut z = normals(seed);
         (0..n)
             .map(|_| Evidence {
-                cost: (0..dof).map(|_| (sigma * z.next().unwrap_or(0.0)).powi(2)).sum(),
+                cost: (0..dof)
+                    .map(|_| (sigma * z.next().unwrap_or(0.0)).powi(2))
+                    .sum(),
                 dof,
             })
             .collect()
@@ -225,7 +228,10 @@ mod tests {
         let m = NoiseModel::estimate(&e, 1e-6);
         assert!((m.sigma - 0.7).abs() < 0.07, "{m:?}");
         let rejected_intent = e[..300].iter().filter(|&&x| !m.explains(x)).count();
-        assert!(rejected_intent <= 3, "{rejected_intent} intent relations rejected");
+        assert!(
+            rejected_intent <= 3,
+            "{rejected_intent} intent relations rejected"
+        );
         assert!(e[300..].iter().all(|&x| !m.explains(x)));
     }
 
@@ -250,11 +256,22 @@ mod tests {
             pooled: 0,
             critical_z: INTENT_Z,
         };
-        let at = |rms: f64| m.log_likelihood_ratio(Evidence { cost: 3.0 * rms * rms, dof: 3 }, 100.0);
+        let at = |rms: f64| {
+            m.log_likelihood_ratio(
+                Evidence {
+                    cost: 3.0 * rms * rms,
+                    dof: 3,
+                },
+                100.0,
+            )
+        };
         assert!(at(1.0) > 2.0, "{}", at(1.0));
         assert!(at(4.0) < -2.0, "{}", at(4.0));
         assert!(at(0.5) > at(1.0) && at(1.0) > at(2.0));
-        assert_eq!(m.log_likelihood_ratio(Evidence { cost: 0.0, dof: 0 }, 100.0), 0.0);
+        assert_eq!(
+            m.log_likelihood_ratio(Evidence { cost: 0.0, dof: 0 }, 100.0),
+            0.0
+        );
     }
 
     #[test]

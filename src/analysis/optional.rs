@@ -75,7 +75,11 @@ pub fn optional_parts<S: Similarity>(
                     // The visible thickness in `v`, relative to the input's thickness.
                     let (thickness, area) = at_input[p];
                     let (_, area_v) = box_at(&model.parts[p], v);
-                    let relative = if area_v > 0.0 { loss * area / area_v } else { loss };
+                    let relative = if area_v > 0.0 {
+                        loss * area / area_v
+                    } else {
+                        loss
+                    };
                     relative < 0.5 * shown[p] && relative * thickness <= sigma
                 })
                 .collect()

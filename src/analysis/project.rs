@@ -426,7 +426,8 @@ impl Projector {
         x: &[f64],
         rows: &[&Affine],
     ) -> Vec<(SlotId, f64)> {
-        self.shift_and_cost(faces, basis, blocks, members, x, rows).0
+        self.shift_and_cost(faces, basis, blocks, members, x, rows)
+            .0
     }
 
     /// [`Projector::shift`] and the move's squared length in the metric (`δᵀHδ`, which is

@@ -87,6 +87,7 @@ pub fn run(args: Args) -> ExitCode {
                         .map(|n| n.to_string_lossy().into_owned())
                 })
                 .flatten(),
+            distortion_curve: args.report.is_some(),
         },
         plot: args.plot.is_some(),
         diff_to: args.diff.then(|| output.display().to_string()),

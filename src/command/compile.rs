@@ -44,6 +44,9 @@ pub struct Options {
     pub all_constraints: bool,
     /// The file name the parameter sets will have (for the comment that points to them).
     pub presets_name: Option<String>,
+    /// Measure the distortion curve (1 − mean IoU after each relation taken) for the report
+    /// and the plot; the decisions do not depend on it, and it takes most of the time.
+    pub distortion_curve: bool,
 }
 
 /// What the `compile` command is asked: the files, and what to make besides the model.
@@ -99,13 +102,9 @@ pub fn compile(options: &CompileOptions, sources: &mut SourceMap) -> DResult<Com
         for v in &options.variations {
             variations.push(load_variation(sources, loaded.main, &evaluated.model, v)?);
         }
-        let compiled = reparameterize(
-            sources,
-            &loaded,
-            &evaluated.model,
-            &variations,
-            &options.options,
-        );
+        let mut job = options.options.clone();
+        job.distortion_curve |= options.plot;
+        let compiled = reparameterize(sources, &loaded, &evaluated.model, &variations, &job);
         let report = &compiled.report;
         let plot = options
             .plot
@@ -152,7 +151,8 @@ pub fn reparameterize(
     let choice = if variations.is_empty() {
         by_prior(model, &candidates, options.all_constraints)
     } else {
-        by_discovery(model, &candidates, &faces, &sim, &values, &optional)
+        let curve = options.distortion_curve.then_some(&sim);
+        by_discovery(model, &candidates, &faces, curve, &values, &optional)
     };
     // Reparameterization: the kept rows solved with anchors; the variations projected.
     let kept: Vec<Candidate> = choice
@@ -279,7 +279,7 @@ fn by_discovery(
     model: &Model,
     candidates: &Candidates,
     faces: &Faces,
-    sim: &VolumeSimilarity,
+    sim: Option<&VolumeSimilarity>,
     values: &[Vec<f64>],
     optional: &[Vec<usize>],
 ) -> Choice {

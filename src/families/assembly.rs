@@ -122,10 +122,11 @@ pub fn assemble(rng: &mut Rng, budget: usize) -> Asm {
         let end = asm.parts.len();
         let theta = asm.params.base();
         let b = bounds(&asm.parts[start..end], &theta);
-        let gap = rng
-            .chance(0.3)
-            .then(|| asm.get(rng, Kind::Gap, "gap"))
-            .unwrap_or_default();
+        let gap = if rng.chance(0.3) {
+            asm.get(rng, Kind::Gap, "gap")
+        } else {
+            Default::default()
+        };
         // A row of the same unit (tables side by side), each the last one moved along x.
         let copies = if rng.chance(0.25) { rng.int(1, 2) } else { 0 };
         let step = b[0].1.sub(&b[0].0).add(&gap);

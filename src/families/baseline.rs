@@ -5,7 +5,7 @@
 //! slots of dropped parts: the row the benchmark compares the main job against.
 
 use crate::analysis::anchors::project_variations;
-use crate::analysis::cutoff::cutoff;
+use crate::analysis::cutoff::change_points;
 use crate::analysis::discover::{Sample, discover};
 use crate::analysis::find_candidates;
 use crate::analysis::optional::{optional_parts, toggles};
@@ -13,7 +13,6 @@ use crate::analysis::project::Faces;
 use crate::analysis::ranges::ranges;
 use crate::analysis::reparam::solve;
 use crate::analysis::similarity::VolumeSimilarity;
-use crate::command::compile::DISTORTION_TOLERANCE;
 use crate::ir::{Affine, Model};
 
 use super::score::Output;
@@ -23,7 +22,8 @@ pub fn paper_method(model: &Model, raw: &[Vec<f64>]) -> Output {
     let start = std::time::Instant::now();
     let candidates = find_candidates(model);
     let sim = VolumeSimilarity::new(model);
-    let optional = optional_parts(model.parts.len(), raw, &sim);
+    // The paper's own test: a part is optional when removing it changes nothing.
+    let optional = optional_parts(model, raw, &sim, 0.0);
     let samples: Vec<Sample> = raw
         .iter()
         .zip(&optional)
@@ -42,8 +42,8 @@ pub fn paper_method(model: &Model, raw: &[Vec<f64>]) -> Output {
         &sim,
         &tiers,
     );
-    let c = cutoff(&disc.curve, DISTORTION_TOLERANCE, disc.order.len());
-    let kept: Vec<Affine> = disc.order[..c.paper.min(disc.order.len())]
+    let (paper, _) = change_points(&disc.curve);
+    let kept: Vec<Affine> = disc.order[..paper.min(disc.order.len())]
         .iter()
         .flat_map(|&i| candidates.list[i].rows.iter().cloned())
         .collect();
@@ -53,7 +53,8 @@ pub fn paper_method(model: &Model, raw: &[Vec<f64>]) -> Output {
         |x: &[f64]| -> Vec<f64> { solution.free.iter().map(|&f| x[f as usize]).collect() };
     let input = free_at(&model.slot_values());
     let variation_free: Vec<Vec<f64>> = projected.iter().map(|p| free_at(p)).collect();
-    let slider_ranges = ranges(model, &solution, &input, &variation_free);
+    // Sizes kept positive, no contacts (the paper has no ranges of its own).
+    let slider_ranges = ranges(model, &solution, &input, &variation_free, &[], 0.0);
     Output {
         kept,
         solution,

@@ -96,7 +96,7 @@ impl Part {
 /// The bounding box of `parts` at `theta`, as forms (the extreme faces).
 pub fn bounds(parts: &[Part], theta: &[f64]) -> [(Lin, Lin); 3] {
     let mut out: [(Lin, Lin); 3] = Default::default();
-    for a in 0..3 {
+    for (a, side) in out.iter_mut().enumerate() {
         let mut lo: Option<Lin> = None;
         let mut hi: Option<Lin> = None;
         for p in parts.iter().filter(|p| !p.cut) {
@@ -108,7 +108,7 @@ pub fn bounds(parts: &[Part], theta: &[f64]) -> [(Lin, Lin); 3] {
                 hi = Some(h);
             }
         }
-        out[a] = (lo.unwrap_or_default(), hi.unwrap_or_default());
+        *side = (lo.unwrap_or_default(), hi.unwrap_or_default());
     }
     out
 }
