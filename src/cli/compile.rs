@@ -35,6 +35,10 @@ pub struct Args {
     /// Also print what changed, as a unified diff from the model to the output.
     #[arg(long)]
     pub diff: bool,
+    /// Draw this module call at the end of the model (for a file that only defines
+    /// modules): `--call 'chair()'`, `--call 'chair(seat_h = 45)'`.
+    #[arg(long, value_name = "CALL")]
+    pub call: Option<String>,
 }
 
 fn io_error(what: &Path, e: std::io::Error) -> ExitCode {
@@ -77,6 +81,7 @@ pub fn run(args: Args) -> ExitCode {
     let options = CompileOptions {
         model: model_path,
         variations: args.vary.clone(),
+        call: args.call.clone(),
         options: Options {
             all_constraints: args.all_constraints,
             presets_name: (!to_stdout)

@@ -40,6 +40,10 @@ pub struct Args {
     cameras: Option<PathBuf>,
     #[command(flatten)]
     backend: BackendArgs,
+    /// Draw this module call at the end of the model (for a file that only defines
+    /// modules): `--call 'chair()'`, `--call 'chair(seat_h = 45)'`.
+    #[arg(long, value_name = "CALL")]
+    call: Option<String>,
 }
 
 #[derive(Clone, Copy, clap::ValueEnum)]
@@ -139,6 +143,7 @@ pub fn run(args: Args) -> ExitCode {
         .is_some_and(|e| e.eq_ignore_ascii_case("png"));
     let opts = Options {
         model: args.model.clone(),
+        call: args.call.clone(),
         size,
         cameras,
         backend: args.backend.into(),
