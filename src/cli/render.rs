@@ -149,12 +149,21 @@ pub fn run(args: Args) -> ExitCode {
         backend: args.backend.into(),
         layout: if is_png { Layout::Grid } else { Layout::Views },
     };
+    if is_png
+        && let Err(code) = super::check_outputs(&[&args.output], std::slice::from_ref(&args.model))
+    {
+        return code;
+    }
     let mut sources = SourceMap::new();
     let rendered = match render(&opts, &mut sources) {
         Ok(r) => r,
         Err(f) => return failed(&sources, &f),
     };
     say(&sources, &rendered.messages);
+    if is_png && let Err(code) = super::check_outputs(&[&args.output], &super::inputs_of(&sources))
+    {
+        return code;
+    }
     match &rendered.pictures {
         Pictures::Grid { png, views } => {
             if let Err(e) = write_atomic(&args.output, png) {

@@ -155,6 +155,16 @@ pub fn load_variation_calling(
     path: &Path,
     call: Option<&str>,
 ) -> DResult<Variation> {
+    let canonical = |p: &Path| std::fs::canonicalize(p).ok();
+    if canonical(path).is_some_and(|v| Some(v) == canonical(sources.path(base))) {
+        return Err(Box::new(
+            Diagnostic::error(
+                "E0603",
+                format!("the variation `{}` is the model itself", path.display()),
+            )
+            .with_note("a variation is another file: the model with other numbers (a bench made from the chair)"),
+        ));
+    }
     let bytes = std::fs::read(path).map_err(|e| {
         Box::new(Diagnostic::error(
             "E0400",
