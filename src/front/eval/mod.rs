@@ -39,7 +39,7 @@ pub const MAX_CALL_DEPTH: usize = 1000;
 pub const MAX_STEPS: u64 = 5_000_000;
 
 /// How many parts a model may have.
-pub const MAX_PARTS: usize = 200_000;
+pub const MAX_PARTS: usize = 100_000;
 
 /// The note on a warning where reparamc goes on as OpenSCAD does.
 const AS_OPENSCAD: &str = "OpenSCAD 2021.01 warns and goes on; so does reparamc";
