@@ -28,6 +28,11 @@ impl Span {
         self.start as usize..self.end as usize
     }
 
+    /// Whether `other` lies inside this span (same file, within its bytes).
+    pub fn contains(&self, other: Span) -> bool {
+        self.file == other.file && self.start <= other.start && other.end <= self.end
+    }
+
     /// The smallest span covering both (same file assumed).
     pub fn to(&self, other: Span) -> Span {
         Span {

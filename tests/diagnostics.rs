@@ -11,16 +11,36 @@
 
 mod common;
 
+use common::snapshot;
+
 use reparamc::front::diag::Severity;
 use reparamc::front::source::SourceMap;
 use std::path::{Path, PathBuf};
 
 /// Bad inputs that are warnings, not errors, in OpenSCAD's sense.
-const WARNING_ONLY: &[&str] = &["missing_semicolon_statement.scad"];
+/// (OpenSCAD warns about each and goes on; `tests/leniency.rs` checks that reparamc reads
+/// them as it does.)
+const WARNING_ONLY: &[&str] = &[
+    "cube_string_size.scad",
+    "cylinder_string_height.scad",
+    "missing_include.scad",
+    "missing_semicolon_statement.scad",
+    "module_too_many_args.scad",
+    "module_unknown_named_arg.scad",
+    "rotate_string.scad",
+    "translate_scalar.scad",
+    "unknown_function.scad",
+    "unknown_variable_size.scad",
+];
 
 /// Bad inputs whose diagnostic is about the whole file (nothing to draw): the line numbers
 /// their comment mentions describe the file, not where the diagnostic must point.
-const WHOLE_FILE: &[&str] = &["comment_only.scad", "draws_nothing.scad", "empty.scad"];
+const WHOLE_FILE: &[&str] = &[
+    "comment_only.scad",
+    "draws_nothing.scad",
+    "empty.scad",
+    "module_only.scad",
+];
 
 /// The bad files, as paths relative to the crate root.
 fn bad_files() -> Vec<PathBuf> {
@@ -37,14 +57,6 @@ fn file_name(path: &Path) -> String {
     path.file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_default()
-}
-
-fn snapshot(name: &str, input: &Path, rendered: &str) {
-    let mut settings = insta::Settings::clone_current();
-    settings.set_snapshot_path("../snapshots");
-    settings.set_prepend_module_to_snapshot(false);
-    settings.set_input_file(input);
-    settings.bind(|| insta::assert_snapshot!(name, rendered));
 }
 
 /// The line numbers the first-line comment of a bad file names ("on line 3", "line 4").

@@ -121,12 +121,15 @@ fn chair_json() {
 
 #[test]
 fn bad_model_exits_1_with_a_diagnostic() {
-    let out = reparamc(&["inspect", "tests/bad/unknown_module.scad"]);
+    let out = reparamc(&["inspect", "tests/bad/nonfinite_literal.scad"]);
     assert_eq!(out.status.code(), Some(1));
     assert_eq!(stdout(&out), "", "nothing on stdout after an error");
     let err = stderr(&out);
     assert!(err.contains("error[E"), "{err}");
-    assert!(err.contains("tests/bad/unknown_module.scad:3:1"), "{err}");
+    assert!(
+        err.contains("tests/bad/nonfinite_literal.scad:3:7"),
+        "{err}"
+    );
     assert!(err.contains('^'), "{err}");
     assert!(
         !err.contains("\u{1b}["),

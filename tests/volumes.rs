@@ -11,13 +11,12 @@
 
 mod common;
 
-use common::tempfile;
+use common::{openscad_export, tempfile};
 use reparamc::front::source::SourceMap;
 use reparamc::geom;
 use reparamc::ir::Model;
 use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 /// What OpenSCAD's polygonised solid holds, given our exact volume.
 #[derive(Clone, Copy)]
@@ -194,22 +193,14 @@ fn write_model(name: &str, scad: &str) -> PathBuf {
 
 /// Renders `model` with the real `openscad` and returns the STL's enclosed volume.
 fn openscad_volume(model: &Path) -> f64 {
-    let out = tempfile(model, "stl");
-    let run = Command::new("openscad")
-        .arg("-o")
-        .arg(&out)
-        .arg(model)
-        .output()
-        .expect("the `openscad` binary must be installed (see .ci/run)");
+    let (run, text) = openscad_export(model, "stl");
     assert!(
         run.status.success(),
         "openscad failed on {}: {}",
         model.display(),
         String::from_utf8_lossy(&run.stderr)
     );
-    let text = std::fs::read_to_string(&out).expect("openscad wrote no STL");
-    let _ = std::fs::remove_file(&out);
-    stl_volume(&text)
+    stl_volume(&text.expect("openscad wrote no STL"))
 }
 
 /// The signed volume enclosed by an ASCII STL: `Σ v0 · (v1 × v2) / 6` over its triangles.

@@ -4,10 +4,10 @@
 //! (a temporary file renamed into place, never over the input), the diff printed when
 //! asked, diagnostics and a one-line summary on standard error.
 
-use super::{EXIT_IO_ERROR, or_report, print_stdout, report};
+use super::{EXIT_IO_ERROR, check_outputs, inputs_of, or_report, print_stdout, report};
 use reparamc::command::compile::{CompileOptions, Options, compile};
 use reparamc::front::source::SourceMap;
-use reparamc::output::{same_file, write_atomic};
+use reparamc::output::write_atomic;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -35,6 +35,10 @@ pub struct Args {
     /// Also print what changed, as a unified diff from the model to the output.
     #[arg(long)]
     pub diff: bool,
+    /// Draw this module call at the end of the model (for a file that only defines
+    /// modules): `--call 'chair()'`, `--call 'chair(seat_h = 45)'`.
+    #[arg(long, value_name = "CALL")]
+    pub call: Option<String>,
 }
 
 fn io_error(what: &Path, e: std::io::Error) -> ExitCode {
@@ -61,12 +65,16 @@ pub fn run(args: Args) -> ExitCode {
         model_path.with_file_name(format!("{stem}_param.scad"))
     });
     let to_stdout = output.as_os_str() == "-";
-    if !to_stdout && same_file(&output, &model_path) {
-        eprintln!(
-            "error: the output `{}` is the input model; choose another file with -o",
-            output.display()
-        );
-        return ExitCode::from(2);
+    let presets = output.with_extension("json");
+    let mut outputs: Vec<&Path> = Vec::new();
+    if !to_stdout {
+        outputs.extend([output.as_path(), presets.as_path()]);
+    }
+    outputs.extend(args.report.iter().chain(&args.plot).map(PathBuf::as_path));
+    let mut inputs = vec![model_path.clone()];
+    inputs.extend(args.vary.iter().cloned());
+    if let Err(code) = check_outputs(&outputs, &inputs) {
+        return code;
     }
     if to_stdout && args.diff {
         eprintln!(
@@ -77,6 +85,7 @@ pub fn run(args: Args) -> ExitCode {
     let options = CompileOptions {
         model: model_path,
         variations: args.vary.clone(),
+        call: args.call.clone(),
         options: Options {
             all_constraints: args.all_constraints,
             presets_name: (!to_stdout)
@@ -99,6 +108,10 @@ pub fn run(args: Args) -> ExitCode {
         Err(code) => return code,
     };
     report(&sources, &made.warnings);
+    // The model's includes are inputs too; they are known only now.
+    if let Err(code) = check_outputs(&outputs, &inputs_of(&sources)) {
+        return code;
+    }
     let compiled = &made.compiled;
     if to_stdout {
         if print_stdout(&compiled.scad) != ExitCode::SUCCESS {
@@ -109,7 +122,7 @@ pub fn run(args: Args) -> ExitCode {
             return code;
         }
         if let Some(p) = &compiled.presets
-            && let Err(code) = write(&output.with_extension("json"), p.as_bytes())
+            && let Err(code) = write(&presets, p.as_bytes())
         {
             return code;
         }

@@ -8,7 +8,7 @@ use super::EXIT_IO_ERROR;
 use super::render::{BackendArgs, failed, input_error, say};
 use reparamc::command::fit::{Fitted, OptimizerChoice, Options, Progress, Settings, prepare};
 use reparamc::front::source::SourceMap;
-use reparamc::output::{same_file, write_atomic};
+use reparamc::output::write_atomic;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -177,12 +177,15 @@ fn options(args: &Args, sigma: (f64, f64)) -> Options {
 }
 
 pub fn run(args: Args) -> ExitCode {
-    if same_file(&args.output, &args.model) {
-        eprintln!(
-            "error: the output `{}` is the input model; choose another file with -o",
-            args.output.display()
-        );
-        return ExitCode::from(2);
+    let mut outputs = vec![args.output.as_path()];
+    outputs.extend(
+        args.report
+            .iter()
+            .chain(&args.gallery)
+            .map(PathBuf::as_path),
+    );
+    if let Err(code) = super::check_outputs(&outputs, std::slice::from_ref(&args.model)) {
+        return code;
     }
     let Some(sigma) = parse_pair(&args.sigma) else {
         return input_error(
@@ -199,6 +202,12 @@ pub fn run(args: Args) -> ExitCode {
         Err(f) => return failed(&sources, &f),
     };
     say(&sources, &std::mem::take(&mut job.messages));
+    // The target pictures and the model's includes are inputs too.
+    let mut inputs = super::inputs_of(&sources);
+    inputs.extend(target_files(&args.target));
+    if let Err(code) = super::check_outputs(&outputs, &inputs) {
+        return code;
+    }
     let bar = indicatif::ProgressBar::new(job.planned_steps() as u64);
     bar.set_style(
         indicatif::ProgressStyle::with_template(
@@ -219,6 +228,13 @@ pub fn run(args: Args) -> ExitCode {
     };
     say(&sources, &fitted.messages);
     write_results(&args, fitted)
+}
+
+/// The files of a target folder (pictures and `cameras.json`).
+fn target_files(dir: &std::path::Path) -> Vec<PathBuf> {
+    std::fs::read_dir(dir)
+        .map(|d| d.filter_map(|e| e.ok().map(|e| e.path())).collect())
+        .unwrap_or_default()
 }
 
 /// Writes the fitted model, the report and the gallery (each file whole or not at all)

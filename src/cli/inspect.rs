@@ -16,11 +16,18 @@ pub struct Args {
     /// Print JSON instead of tables.
     #[arg(long)]
     json: bool,
+    /// Draw this module call at the end of the model (for a file that only defines
+    /// modules): `--call 'chair()'`, `--call 'chair(seat_h = 45)'`.
+    #[arg(long, value_name = "CALL")]
+    call: Option<String>,
 }
 
 pub fn run(args: Args) -> ExitCode {
     let mut sources = SourceMap::new();
-    let options = InspectOptions { model: args.model };
+    let options = InspectOptions {
+        model: args.model,
+        call: args.call,
+    };
     let result = inspect(&options, &mut sources);
     let found = match or_report(&sources, result) {
         Ok(found) => found,

@@ -48,6 +48,13 @@ enum Command {
 /// Runs the command line and returns the process exit code.
 pub fn run() -> ExitCode {
     let cli = Cli::parse();
+    // Ctrl-C: whatever is half-written goes, and nothing else was touched (every output is
+    // written whole at the end, inputs never).
+    let _ = ctrlc::set_handler(|| {
+        reparamc::output::remove_unfinished();
+        eprintln!("interrupted: no output written");
+        std::process::exit(130);
+    });
     match cli.command {
         Some(Command::Inspect(args)) => inspect::run(args),
         Some(Command::Render(args)) => render::run(args),
@@ -71,6 +78,28 @@ pub fn report(sources: &SourceMap, diags: &[Diagnostic]) {
     for d in diags {
         d.emit(sources, &mut err);
     }
+}
+
+/// Checks, before a job runs, that every output can be written and names no input; on
+/// failure the message is printed and the exit code returned.
+pub fn check_outputs(
+    outputs: &[&std::path::Path],
+    inputs: &[std::path::PathBuf],
+) -> Result<(), ExitCode> {
+    for out in outputs {
+        if let Err(text) = reparamc::output::check_output(out, inputs) {
+            eprintln!("error: {text}");
+            return Err(ExitCode::from(EXIT_IO_ERROR));
+        }
+    }
+    Ok(())
+}
+
+/// Every file `sources` read (the model, its includes, its variations).
+pub fn inputs_of(sources: &SourceMap) -> Vec<std::path::PathBuf> {
+    (0..sources.len())
+        .map(|f| sources.path(f).to_path_buf())
+        .collect()
 }
 
 /// Writes `text` to standard output; a closed pipe (`| head`) is not an error.

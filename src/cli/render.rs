@@ -40,6 +40,10 @@ pub struct Args {
     cameras: Option<PathBuf>,
     #[command(flatten)]
     backend: BackendArgs,
+    /// Draw this module call at the end of the model (for a file that only defines
+    /// modules): `--call 'chair()'`, `--call 'chair(seat_h = 45)'`.
+    #[arg(long, value_name = "CALL")]
+    call: Option<String>,
 }
 
 #[derive(Clone, Copy, clap::ValueEnum)]
@@ -139,17 +143,27 @@ pub fn run(args: Args) -> ExitCode {
         .is_some_and(|e| e.eq_ignore_ascii_case("png"));
     let opts = Options {
         model: args.model.clone(),
+        call: args.call.clone(),
         size,
         cameras,
         backend: args.backend.into(),
         layout: if is_png { Layout::Grid } else { Layout::Views },
     };
+    if is_png
+        && let Err(code) = super::check_outputs(&[&args.output], std::slice::from_ref(&args.model))
+    {
+        return code;
+    }
     let mut sources = SourceMap::new();
     let rendered = match render(&opts, &mut sources) {
         Ok(r) => r,
         Err(f) => return failed(&sources, &f),
     };
     say(&sources, &rendered.messages);
+    if is_png && let Err(code) = super::check_outputs(&[&args.output], &super::inputs_of(&sources))
+    {
+        return code;
+    }
     match &rendered.pictures {
         Pictures::Grid { png, views } => {
             if let Err(e) = write_atomic(&args.output, png) {

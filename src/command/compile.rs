@@ -29,12 +29,12 @@ use crate::back::plot::distortion_png;
 use crate::back::presets::presets_json;
 use crate::back::report::{ChosenRelation, FreeVariableReport, Report, VariationReport};
 use crate::front::diag::{DResult, Diagnostic};
-use crate::front::load::{Loaded, load_file};
+use crate::front::load::{Loaded, load_file_calling};
 use crate::front::source::SourceMap;
 use crate::front::{eval::evaluate, with_large_stack};
 use crate::ir::{Affine, Model};
 use crate::tolerance::{MIN_DISPLAY_SIZE, Tolerance};
-use crate::variation::{Variation, load_variation};
+use crate::variation::{Variation, load_variation_calling};
 use std::path::PathBuf;
 
 /// How the pipeline chooses and presents (what [`reparameterize`] can be told).
@@ -56,6 +56,8 @@ pub struct CompileOptions {
     pub model: PathBuf,
     /// Its variant files: the same program with other numbers.
     pub variations: Vec<PathBuf>,
+    /// A module call to draw at the end of the model (and of each variant): `chair()`.
+    pub call: Option<String>,
     pub options: Options,
     /// Draw the distortion curve with the cutoff marked (PNG bytes in [`CompileOutput`]).
     pub plot: bool,
@@ -96,11 +98,19 @@ pub struct CompileOutput {
 /// the diagnostic that stopped it.
 pub fn compile(options: &CompileOptions, sources: &mut SourceMap) -> DResult<CompileOutput> {
     with_large_stack(|| {
-        let loaded = load_file(sources, &options.model)?;
+        let call = options.call.as_deref();
+        let loaded = load_file_calling(sources, &options.model, call)?;
         let evaluated = evaluate(sources, &loaded)?;
         let mut variations = Vec::new();
         for v in &options.variations {
-            variations.push(load_variation(sources, loaded.main, &evaluated.model, v)?);
+            let model = &evaluated.model;
+            variations.push(load_variation_calling(
+                sources,
+                loaded.main,
+                model,
+                v,
+                call,
+            )?);
         }
         let mut job = options.options.clone();
         job.distortion_curve |= options.plot;

@@ -8,7 +8,7 @@ use crate::analysis::find_candidates;
 pub use crate::back::inspect::Inspection;
 use crate::back::inspect::inspect as present;
 use crate::front::diag::{DResult, Diagnostic};
-use crate::front::load_model;
+use crate::front::load_model_calling;
 use crate::front::source::SourceMap;
 use std::path::PathBuf;
 
@@ -17,6 +17,8 @@ use std::path::PathBuf;
 pub struct InspectOptions {
     /// The OpenSCAD model to read.
     pub model: PathBuf,
+    /// A module call to draw at the end of the model (`--call`).
+    pub call: Option<String>,
 }
 
 /// What it finds.
@@ -28,7 +30,7 @@ pub struct InspectOutput {
 
 /// The `inspect` command: the model's parameters, parts, frozen numbers and relations.
 pub fn inspect(options: &InspectOptions, sources: &mut SourceMap) -> DResult<InspectOutput> {
-    let evaluated = load_model(sources, &options.model)?;
+    let evaluated = load_model_calling(sources, &options.model, options.call.as_deref())?;
     let candidates = find_candidates(&evaluated.model);
     Ok(InspectOutput {
         inspection: present(sources, &evaluated.model, &candidates),

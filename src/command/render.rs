@@ -64,6 +64,8 @@ pub enum Layout {
 #[derive(Debug, Clone, PartialEq)]
 pub struct Options {
     pub model: PathBuf,
+    /// A module call to draw at the end of the model (`--call`).
+    pub call: Option<String>,
     /// Image size in pixels (width, height).
     pub size: (u32, u32),
     pub cameras: Cameras,
@@ -93,7 +95,9 @@ pub struct Rendered {
 
 /// Renders the model of `opts` from its cameras. Every file read goes into `sources`.
 pub fn render(opts: &Options, sources: &mut SourceMap) -> Result<Rendered, Failure> {
-    let evaluated = crate::front::load_model(sources, &opts.model).map_err(Failure::from)?;
+    let call = opts.call.as_deref();
+    let evaluated =
+        crate::front::load_model_calling(sources, &opts.model, call).map_err(Failure::from)?;
     let mut messages = as_messages(evaluated.warnings);
     let model = &evaluated.model;
     let scene = Scene::from_parts(&model.parts, &model.csg);

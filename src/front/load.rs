@@ -1,7 +1,8 @@
 //! Reading a model and the files it includes.
 //!
 //! Owns file I/O: the model is read and parsed, then every `include <...>` / `use <...>` is
-//! resolved next to the file that names it, read once and parsed. The result maps each
+//! resolved next to the file that names it, read once and parsed; one that cannot be read
+//! is skipped with a warning, as OpenSCAD skips it. The result maps each
 //! include's path span to the file it names, so the evaluator never touches the disk.
 
 use super::ast::{Program, StmtKind};
@@ -20,16 +21,39 @@ pub struct Loaded {
     pub programs: HashMap<FileId, Program>,
     /// `include`/`use` path span → the file it names.
     pub includes: HashMap<Span, FileId>,
+    /// What reading gave warnings for: an `include`/`use` of a file that cannot be read is
+    /// skipped, as OpenSCAD skips it.
+    pub warnings: Vec<Diagnostic>,
 }
 
 /// Reads and parses `path` and its includes into `sources`.
 pub fn load_file(sources: &mut SourceMap, path: &Path) -> DResult<Loaded> {
-    let bytes = std::fs::read(path).map_err(|e| {
+    let bytes = read_model(path)?;
+    load_bytes(sources, path, bytes)
+}
+
+fn read_model(path: &Path) -> DResult<Vec<u8>> {
+    std::fs::read(path).map_err(|e| {
         Box::new(Diagnostic::error(
             "E0400",
             format!("cannot read `{}`: {}", path.display(), io_reason(&e)),
         ))
-    })?;
+    })
+}
+
+/// Like [`load_file`], with the module call `call` appended to the model's text (see
+/// [`super::call`]).
+pub fn load_file_calling(
+    sources: &mut SourceMap,
+    path: &Path,
+    call: Option<&str>,
+) -> DResult<Loaded> {
+    let Some(call) = call else {
+        return load_file(sources, path);
+    };
+    super::call::check_call(sources, call)?;
+    let mut bytes = read_model(path)?;
+    bytes.extend_from_slice(super::call::appended(call).as_bytes());
     load_bytes(sources, path, bytes)
 }
 
@@ -39,6 +63,7 @@ pub fn load_bytes(sources: &mut SourceMap, path: &Path, bytes: Vec<u8>) -> DResu
         main: 0,
         programs: HashMap::new(),
         includes: HashMap::new(),
+        warnings: Vec::new(),
     };
     let mut by_path: HashMap<PathBuf, FileId> = HashMap::new();
     loaded.main = add_file(sources, &mut loaded, &mut by_path, path, bytes)?;
@@ -85,13 +110,23 @@ fn add_file(
         let id = match by_path.get(&canonical(&target)) {
             Some(&id) => id,
             None => {
-                let bytes = std::fs::read(&target).map_err(|e| {
-                    Box::new(
-                        Diagnostic::error("E0401", format!("cannot read included file `{rel}`"))
+                let bytes = match std::fs::read(&target) {
+                    Ok(bytes) => bytes,
+                    Err(e) => {
+                        loaded.warnings.push(
+                            Diagnostic::warning(
+                                "W0401",
+                                format!("cannot read included file `{rel}`: it is skipped"),
+                            )
                             .at(path_span, io_reason(&e))
-                            .with_note(format!("looked for `{}`", target.display())),
-                    )
-                })?;
+                            .with_note(format!("looked for `{}`", target.display()))
+                            .with_note(
+                                "OpenSCAD 2021.01 warns and goes on without it; so does reparamc",
+                            ),
+                        );
+                        continue;
+                    }
+                };
                 add_file(sources, loaded, by_path, &target, bytes)?
             }
         };

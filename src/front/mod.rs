@@ -9,6 +9,7 @@
 //! to read a model, on a thread with a stack deep enough for the call-depth limit.
 
 pub mod ast;
+pub mod call;
 pub mod diag;
 pub mod eval;
 pub mod load;
@@ -60,6 +61,18 @@ pub fn with_large_stack<T: Send>(f: impl FnOnce() -> T + Send) -> T {
 pub fn load_model(sources: &mut SourceMap, path: &Path) -> DResult<Evaluated> {
     with_large_stack(|| {
         let loaded = load::load_file(sources, path)?;
+        eval::evaluate(sources, &loaded)
+    })
+}
+
+/// Like [`load_model`], drawing `call` (a module call, see [`call`]) at the file's end.
+pub fn load_model_calling(
+    sources: &mut SourceMap,
+    path: &Path,
+    call: Option<&str>,
+) -> DResult<Evaluated> {
+    with_large_stack(|| {
+        let loaded = load::load_file_calling(sources, path, call)?;
         eval::evaluate(sources, &loaded)
     })
 }

@@ -143,13 +143,38 @@ pub fn load_variation(
     model: &Model,
     path: &Path,
 ) -> DResult<Variation> {
+    load_variation_calling(sources, base, model, path, None)
+}
+
+/// Like [`load_variation`] for a model read with `--call`: the variant gets the same call
+/// appended, as the model did.
+pub fn load_variation_calling(
+    sources: &mut SourceMap,
+    base: FileId,
+    model: &Model,
+    path: &Path,
+    call: Option<&str>,
+) -> DResult<Variation> {
+    let canonical = |p: &Path| std::fs::canonicalize(p).ok();
+    if canonical(path).is_some_and(|v| Some(v) == canonical(sources.path(base))) {
+        return Err(Box::new(
+            Diagnostic::error(
+                "E0603",
+                format!("the variation `{}` is the model itself", path.display()),
+            )
+            .with_note("a variation is another file: the model with other numbers (a bench made from the chair)"),
+        ));
+    }
     let bytes = std::fs::read(path).map_err(|e| {
         Box::new(Diagnostic::error(
             "E0400",
             format!("cannot read variation `{}`: {e}", path.display()),
         ))
     })?;
-    let text = String::from_utf8_lossy(&bytes).into_owned();
+    let mut text = String::from_utf8_lossy(&bytes).into_owned();
+    if let Some(call) = call {
+        text.push_str(&crate::front::call::appended(call));
+    }
     let file = sources.add(path, text);
     let name = path.file_stem().map_or_else(
         || format!("variation{file}"),

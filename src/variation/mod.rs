@@ -7,4 +7,4 @@
 mod diff;
 pub mod files;
 
-pub use files::{Variation, load_variation};
+pub use files::{Variation, load_variation, load_variation_calling};

@@ -33,24 +33,40 @@ pub fn scad_files(dir: &str) -> Vec<PathBuf> {
     v
 }
 
-/// Runs `openscad -o <tmp>.csg model` and returns the export.
-pub fn openscad_csg(model: &Path) -> String {
-    let out = tempfile(model, "csg");
-    let status = Command::new("openscad")
+/// Runs `openscad -o <tmp>.<ext> model`: what it printed and exited with, and the file it
+/// wrote, if any.
+pub fn openscad_export(model: &Path, ext: &str) -> (std::process::Output, Option<String>) {
+    let out = tempfile(model, ext);
+    let run = Command::new("openscad")
         .arg("-o")
         .arg(&out)
         .arg(model)
         .output()
         .expect("the `openscad` binary must be installed (see .ci/run)");
+    let text = std::fs::read_to_string(&out).ok();
+    let _ = std::fs::remove_file(&out);
+    (run, text)
+}
+
+/// Runs `openscad -o <tmp>.csg model` and returns the export.
+pub fn openscad_csg(model: &Path) -> String {
+    let (run, text) = openscad_export(model, "csg");
     assert!(
-        status.status.success(),
+        run.status.success(),
         "openscad failed on {}: {}",
         model.display(),
-        String::from_utf8_lossy(&status.stderr)
+        String::from_utf8_lossy(&run.stderr)
     );
-    let text = std::fs::read_to_string(&out).expect("openscad wrote no .csg");
-    let _ = std::fs::remove_file(&out);
-    text
+    text.expect("openscad wrote no .csg")
+}
+
+/// Asserts `rendered` against the snapshot `snapshots/<name>.snap` (insta).
+pub fn snapshot(name: &str, input: &Path, rendered: &str) {
+    let mut settings = insta::Settings::clone_current();
+    settings.set_snapshot_path("../../snapshots");
+    settings.set_prepend_module_to_snapshot(false);
+    settings.set_input_file(input);
+    settings.bind(|| insta::assert_snapshot!(name, rendered));
 }
 
 /// A unique temporary path for an artefact of `model`.

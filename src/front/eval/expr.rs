@@ -49,6 +49,12 @@ pub fn values_equal(a: &Value, b: &Value) -> bool {
 impl Eval<'_> {
     pub fn expr(&mut self, e: &Expr, scope: &Rc<Scope>) -> DResult<Value> {
         self.tick(e.span)?;
+        let v = self.expr_kind(e, scope)?;
+        self.note_nonfinite(e, &v);
+        Ok(v)
+    }
+
+    fn expr_kind(&mut self, e: &Expr, scope: &Rc<Scope>) -> DResult<Value> {
         match &e.kind {
             ExprKind::Number { value, .. } => Ok(Value::Num(self.literal(e.span, *value))),
             ExprKind::Bool(b) => Ok(Value::Bool(*b)),
@@ -162,14 +168,15 @@ impl Eval<'_> {
                 scope: home,
             })));
         }
-        let mut d = Diagnostic::error("E0102", format!("unknown variable `{name}`"))
-            .at(span, "not defined in this scope");
+        let mut d = Diagnostic::warning("W0102", format!("unknown variable `{name}`"))
+            .at(span, "not defined in this scope: it is `undef`");
         if let Some(s) = super::suggest(name, &scope.visible_names()) {
             d = d.with_note(format!(
                 "help: a variable with a similar name exists: `{s}`"
             ));
         }
-        Err(Box::new(d))
+        self.warnings.push(d.with_note(super::AS_OPENSCAD));
+        Ok(Value::Undef)
     }
 
     /// Decides a condition; a number used as a condition freezes its slots.
@@ -579,14 +586,17 @@ impl Eval<'_> {
             if let Some(v) = self.builtin_function(name, args, span, scope)? {
                 return Ok(v);
             }
-            let mut d = Diagnostic::error("E0104", format!("unknown function `{name}`"))
-                .at(callee.span, "no function of this name is defined");
+            let mut d = Diagnostic::warning("W0104", format!("unknown function `{name}`")).at(
+                callee.span,
+                "no function of this name is defined: the call is `undef`",
+            );
             if let Some(s) = super::suggest(name, &scope.visible_functions()) {
                 d = d.with_note(format!(
                     "help: a function with a similar name exists: `{s}`"
                 ));
             }
-            return Err(Box::new(d));
+            self.warnings.push(d.with_note(super::AS_OPENSCAD));
+            return Ok(Value::Undef);
         }
         match self.expr(callee, scope)? {
             Value::Function(c) => {
@@ -648,32 +658,40 @@ impl Eval<'_> {
                     if !params.iter().any(|p| p.name.name == n.name) {
                         let names: Vec<String> =
                             params.iter().map(|p| p.name.name.clone()).collect();
-                        let mut d = Diagnostic::error(
-                            "E0106",
+                        let d = Diagnostic::warning(
+                            "W0106",
                             format!("{what} `{name}` has no parameter `{}`", n.name),
                         )
-                        .at(n.span, "unknown parameter");
-                        d = d.with_note(if names.is_empty() {
+                        .at(n.span, "unknown parameter")
+                        .with_note(if names.is_empty() {
                             format!("`{name}` takes no parameters")
                         } else {
                             format!("`{name}` takes: {}", names.join(", "))
-                        });
-                        return Err(Box::new(d));
+                        })
+                        .with_note(format!(
+                            "OpenSCAD warns and sets `{}` inside `{name}` all the same; so does reparamc",
+                            n.name
+                        ));
+                        self.warnings.push(d);
                     }
                     inner.set(&n.name, v);
                 }
                 None => {
                     let Some(p) = params.get(positional) else {
-                        return Err(Box::new(
-                            Diagnostic::error(
-                                "E0107",
+                        self.warnings.push(
+                            Diagnostic::warning(
+                                "W0107",
                                 format!("too many arguments to {what} `{name}`"),
                             )
                             .at(
                                 a.span,
                                 format!("`{name}` takes {} argument(s)", params.len()),
+                            )
+                            .with_note(
+                                "OpenSCAD warns and ignores the extra ones; so does reparamc",
                             ),
-                        ));
+                        );
+                        continue;
                     };
                     positional += 1;
                     inner.set(&p.name.name, v);

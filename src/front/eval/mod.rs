@@ -8,6 +8,7 @@
 
 mod builtins;
 mod expr;
+mod finite;
 mod modules;
 mod scope;
 mod stmt;
@@ -38,7 +39,10 @@ pub const MAX_CALL_DEPTH: usize = 1000;
 pub const MAX_STEPS: u64 = 5_000_000;
 
 /// How many parts a model may have.
-pub const MAX_PARTS: usize = 200_000;
+pub const MAX_PARTS: usize = 100_000;
+
+/// The note on a warning where reparamc goes on as OpenSCAD does.
+const AS_OPENSCAD: &str = "OpenSCAD 2021.01 warns and goes on; so does reparamc";
 
 /// How many freeze-and-rerun rounds evaluation may take.
 const MAX_PASSES: usize = 64;
@@ -104,6 +108,7 @@ impl Literals {
 
 /// The state of one evaluation pass.
 pub struct Eval<'a> {
+    sources: &'a SourceMap,
     loaded: &'a Loaded,
     defs: &'a Defs,
     naming: &'a Naming,
@@ -121,6 +126,9 @@ pub struct Eval<'a> {
     /// Per slot: the name of what it belongs to (if known yet) and its role.
     slot_roles: HashMap<SlotId, (Option<String>, String)>,
     warnings: Vec<Diagnostic>,
+    /// Where the latest non-finite number was made (a literal like `1e999`, or an
+    /// operation on finite numbers like `0/0`), for the diagnostic when one reaches geometry.
+    nonfinite_origin: Option<Span>,
 }
 
 impl Eval<'_> {
@@ -268,6 +276,7 @@ pub fn evaluate(sources: &SourceMap, loaded: &Loaded) -> DResult<Evaluated> {
     loop {
         pass += 1;
         let mut ev = Eval {
+            sources,
             loaded,
             defs: &defs,
             naming: &naming,
@@ -282,6 +291,7 @@ pub fn evaluate(sources: &SourceMap, loaded: &Loaded) -> DResult<Evaluated> {
             used_scopes: HashMap::new(),
             slot_roles: HashMap::new(),
             warnings: Vec::new(),
+            nonfinite_origin: None,
         };
         let program = &loaded.programs[&loaded.main];
         let nodes = ev.block(&program.stmts, &Scope::root(), &Ctx::root())?;
@@ -301,13 +311,9 @@ pub fn evaluate(sources: &SourceMap, loaded: &Loaded) -> DResult<Evaluated> {
             warnings,
             ..
         } = ev;
+        let warnings = all_warnings(loaded, warnings);
         if parts.is_empty() {
-            let main = Span::new(loaded.main, 0, 0);
-            return Err(Box::new(
-                Diagnostic::error("E0500", "the model draws nothing")
-                    .at(main, "no cube, cylinder or sphere is made by this file")
-                    .with_note("reparamc re-parameterizes solids; a model needs at least one primitive that is not `%` or `*`"),
-            ));
+            return Err(Box::new(draws_nothing(sources, loaded, &warnings)));
         }
         if new_freezes.is_empty() || pass >= MAX_PASSES {
             let model = build_model(sources, &lits, parts, background, csg, slot_roles);
@@ -316,6 +322,35 @@ pub fn evaluate(sources: &SourceMap, loaded: &Loaded) -> DResult<Evaluated> {
         for (s, why) in new_freezes {
             lits.frozen.entry(s).or_insert(why);
         }
+    }
+}
+
+/// The loader's warnings, then evaluation's, each (code and place) once: a loop body
+/// warns on every turn.
+fn all_warnings(loaded: &Loaded, evaluated: Vec<Diagnostic>) -> Vec<Diagnostic> {
+    let mut seen = std::collections::HashSet::new();
+    loaded
+        .warnings
+        .iter()
+        .cloned()
+        .chain(evaluated)
+        .filter(|d| seen.insert((d.code, d.primary.as_ref().map(|(s, _)| *s))))
+        .collect()
+}
+
+/// The error for a model without a part: the warnings that may say why are shown in it.
+fn draws_nothing(sources: &SourceMap, loaded: &Loaded, warnings: &[Diagnostic]) -> Diagnostic {
+    let main = Span::new(loaded.main, 0, 0);
+    let mut d = Diagnostic::error("E0500", "the model draws nothing")
+        .at(main, "no cube, cylinder or sphere is made by this file");
+    for w in warnings.iter().take(8) {
+        if let Some((span, _)) = &w.primary {
+            d = d.with_secondary(*span, format!("warning: {}", w.message));
+        }
+    }
+    match crate::front::call::module_only_help(sources, loaded) {
+        Some(help) => d.with_note(help),
+        None => d.with_note("reparamc re-parameterizes solids; a model needs at least one primitive that is not `%` or `*`"),
     }
 }
 

@@ -19,6 +19,74 @@ use std::collections::HashMap;
 use std::rc::Rc;
 
 use super::builtins::{cos_degrees, sin_degrees};
+use super::format_number;
+
+/// How OpenSCAD 2021.01 converts a vector argument of a built-in module.
+#[derive(Clone, Copy)]
+struct Shape {
+    /// A single number stands for all three entries.
+    scalar: bool,
+    /// The vector lengths accepted (shorter ones are padded with `pad`).
+    lengths: &'static [usize],
+    pad: f64,
+    /// An entry that is not a number stops the conversion, keeping the entries before it
+    /// (`cube([1, 2, "a"])` is `cube([1, 2, 1])`).
+    partial: bool,
+    /// An entry that is not a number counts as 0 (`rotate([1, "b", 0])`).
+    zero_bad: bool,
+    /// What a failed conversion leaves, in words.
+    instead: &'static str,
+}
+
+impl Shape {
+    const CUBE: Shape = Shape {
+        scalar: true,
+        lengths: &[3],
+        pad: 1.0,
+        partial: true,
+        zero_bad: false,
+        instead: "1 for each size it cannot read",
+    };
+    const TRANSLATE: Shape = Shape {
+        scalar: false,
+        lengths: &[2, 3],
+        pad: 0.0,
+        partial: false,
+        zero_bad: false,
+        instead: "no translation",
+    };
+    const SCALE: Shape = Shape {
+        scalar: true,
+        lengths: &[2, 3],
+        pad: 1.0,
+        instead: "no scaling",
+        ..Shape::TRANSLATE
+    };
+    const MIRROR: Shape = Shape {
+        instead: "the normal [1, 0, 0]",
+        ..Shape::TRANSLATE
+    };
+    const ANGLES: Shape = Shape {
+        scalar: false,
+        lengths: &[1, 2, 3],
+        pad: 0.0,
+        partial: false,
+        zero_bad: true,
+        instead: "0 for each angle it cannot read",
+    };
+    const AXIS: Shape = Shape {
+        instead: "the z axis",
+        ..Shape::TRANSLATE
+    };
+
+    fn wanted(&self) -> &'static str {
+        if self.scalar {
+            "a number or a vector of numbers"
+        } else {
+            "a vector of numbers"
+        }
+    }
+}
 
 /// Arguments of a built-in call, by parameter name, with the argument's span.
 struct BuiltinArgs {
@@ -207,50 +275,88 @@ impl<'a> Eval<'a> {
         })
     }
 
-    /// A required number argument, or a diagnostic naming what was given.
-    fn num_arg(&self, bargs: &BuiltinArgs, name: &str, module: &str, default: f64) -> DResult<Num> {
-        match bargs.get(name) {
-            None => Ok(Num::constant(default)),
-            Some((Value::Num(n), _)) => Ok(n.clone()),
-            Some((other, span)) => Err(Box::new(
-                Diagnostic::error("E0108", format!("`{module}` needs a number for `{name}`"))
-                    .at(*span, format!("this is {}", other.type_name())),
-            )),
-        }
-    }
-
-    /// A vector of up to three numbers, padded with `pad`.
-    fn vec3_arg(
-        &self,
+    /// A number argument. Anything else is what OpenSCAD does with it: a warning, and the
+    /// default in its place.
+    fn num_arg(
+        &mut self,
         bargs: &BuiltinArgs,
         name: &str,
         module: &str,
-        pad: f64,
-        scalar_ok: bool,
+        default: f64,
+    ) -> DResult<Num> {
+        match bargs.get(name) {
+            None => Ok(Num::constant(default)),
+            Some((Value::Num(n), span)) => {
+                self.finite(n, *span, &format!("`{name}` of `{module}`"))?;
+                Ok(n.clone())
+            }
+            Some((other, span)) => {
+                let text = format!("`{module}` needs a number for `{name}`");
+                self.ignored_argument(text, *span, other, &format_number(default));
+                Ok(Num::constant(default))
+            }
+        }
+    }
+
+    /// Warns that an argument OpenSCAD cannot convert is replaced by its default.
+    fn ignored_argument(&mut self, message: String, span: Span, given: &Value, instead: &str) {
+        self.warnings.push(
+            Diagnostic::warning("W0108", message)
+                .at(span, format!("this is {}", given.type_name()))
+                .with_note(format!(
+                    "OpenSCAD warns and uses {instead} instead; so does reparamc"
+                )),
+        );
+    }
+
+    /// A vector of numbers as OpenSCAD converts one: `shape` says how many entries it
+    /// takes and what a failed conversion leaves. `None` when the argument is absent or
+    /// cannot be converted (with a warning); the caller's default applies.
+    fn vec3_arg(
+        &mut self,
+        bargs: &BuiltinArgs,
+        name: &str,
+        module: &str,
+        shape: Shape,
     ) -> DResult<Option<[Num; 3]>> {
-        let Some((v, span)) = bargs.get(name) else {
+        let Some((v, span)) = bargs.get(name).cloned() else {
             return Ok(None);
         };
-        let bad = |what: &str| {
-            Box::new(
-                Diagnostic::error("E0108", format!("`{module}` needs {what} for `{name}`"))
-                    .at(*span, format!("this is {}", v.type_name())),
-            )
-        };
-        match v {
-            Value::Num(n) if scalar_ok => Ok(Some([n.clone(), n.clone(), n.clone()])),
-            Value::Vector(items) => {
-                let mut out: [Num; 3] = std::array::from_fn(|_| Num::constant(pad));
+        let what = format!("`{name}` of `{module}`");
+        let message = || format!("`{module}` needs {} for `{name}`", shape.wanted());
+        match &v {
+            Value::Num(n) if shape.scalar => {
+                self.finite(n, span, &what)?;
+                Ok(Some([n.clone(), n.clone(), n.clone()]))
+            }
+            Value::Vector(items) if shape.lengths.contains(&items.len()) => {
+                let mut out: [Num; 3] = std::array::from_fn(|_| Num::constant(shape.pad));
                 for (i, item) in items.iter().take(3).enumerate() {
                     match item {
-                        Value::Num(n) => out[i] = n.clone(),
-                        _ => return Err(bad("a vector of numbers")),
+                        Value::Num(n) => {
+                            self.finite(n, span, &what)?;
+                            out[i] = n.clone();
+                        }
+                        _ if shape.zero_bad => out[i] = Num::constant(0.0),
+                        _ if shape.partial => {
+                            self.ignored_argument(message(), span, &v, shape.instead);
+                            return Ok(Some(out));
+                        }
+                        _ => {
+                            self.ignored_argument(message(), span, &v, shape.instead);
+                            return Ok(None);
+                        }
                     }
+                }
+                if shape.zero_bad && items.iter().any(|x| x.as_num().is_none()) {
+                    self.ignored_argument(message(), span, &v, shape.instead);
                 }
                 Ok(Some(out))
             }
-            _ if scalar_ok => Err(bad("a number or a vector of numbers")),
-            _ => Err(bad("a vector of numbers")),
+            _ => {
+                self.ignored_argument(message(), span, &v, shape.instead);
+                Ok(None)
+            }
         }
     }
 
@@ -282,25 +388,27 @@ impl<'a> Eval<'a> {
         let primitive = match name {
             "cube" => {
                 let size = self
-                    .vec3_arg(bargs, "size", "cube", 1.0, true)?
+                    .vec3_arg(bargs, "size", "cube", Shape::CUBE)?
                     .unwrap_or_else(|| std::array::from_fn(|_| Num::constant(1.0)));
                 Primitive::Cube { size, center }
             }
             "cylinder" => {
                 let h = self.num_arg(bargs, "h", "cylinder", 1.0)?;
-                let r = self.radius(bargs, "d", "r")?;
+                let r = self.radius(bargs, "cylinder", "d", "r")?;
                 let r1 = self
-                    .radius(bargs, "d1", "r1")?
+                    .radius(bargs, "cylinder", "d1", "r1")?
                     .or_else(|| r.clone())
                     .unwrap_or(Num::constant(1.0));
                 let r2 = self
-                    .radius(bargs, "d2", "r2")?
+                    .radius(bargs, "cylinder", "d2", "r2")?
                     .or(r)
                     .unwrap_or(Num::constant(1.0));
                 Primitive::Cylinder { h, r1, r2, center }
             }
             _ => {
-                let r = self.radius(bargs, "d", "r")?.unwrap_or(Num::constant(1.0));
+                let r = self
+                    .radius(bargs, "sphere", "d", "r")?
+                    .unwrap_or(Num::constant(1.0));
                 Primitive::Sphere { r }
             }
         };
@@ -315,6 +423,7 @@ impl<'a> Eval<'a> {
             highlighted: ctx.highlight,
             statements: self.chain.clone(),
         };
+        self.finite_part(&part)?;
         self.name_primitive_slots(&part, ctx);
         if ctx.background {
             self.background.push(part);
@@ -324,16 +433,29 @@ impl<'a> Eval<'a> {
         Ok(Some(CsgNode::Part(self.parts.len() - 1)))
     }
 
-    /// OpenSCAD's radius lookup: a diameter wins over a radius.
-    fn radius(&self, bargs: &BuiltinArgs, d: &str, r: &str) -> DResult<Option<Num>> {
-        if bargs.get(d).is_some() {
-            let dv = self.num_arg(bargs, d, "cylinder", 0.0)?;
-            return Ok(Some(
-                dv.mul(&Num::constant(0.5), crate::ir::num::FreezeSide::Right),
-            ));
-        }
-        if bargs.get(r).is_some() {
-            return Ok(Some(self.num_arg(bargs, r, "cylinder", 0.0)?));
+    /// OpenSCAD's radius lookup: a diameter wins over a radius; one that is not a number
+    /// is warned about and left out, so the default radius (1) applies, as in OpenSCAD.
+    fn radius(
+        &mut self,
+        bargs: &BuiltinArgs,
+        module: &str,
+        d: &str,
+        r: &str,
+    ) -> DResult<Option<Num>> {
+        for (name, factor) in [(d, Some(0.5)), (r, None)] {
+            let Some((v, span)) = bargs.get(name).cloned() else {
+                continue;
+            };
+            let Value::Num(n) = v else {
+                let text = format!("`{module}` needs a number for `{name}`");
+                self.ignored_argument(text, span, &v, "its default radius");
+                return Ok(None);
+            };
+            self.finite(&n, span, &format!("`{name}` of `{module}`"))?;
+            return Ok(Some(match factor {
+                Some(f) => n.mul(&Num::constant(f), crate::ir::num::FreezeSide::Right),
+                None => n,
+            }));
         }
         Ok(None)
     }
@@ -347,7 +469,7 @@ impl<'a> Eval<'a> {
     ) -> DResult<(Transform, Option<Misalignment>)> {
         let local = match name {
             "translate" => {
-                let v = self.vec3_arg(bargs, "v", "translate", 0.0, false)?;
+                let v = self.vec3_arg(bargs, "v", "translate", Shape::TRANSLATE)?;
                 let mut t = Transform::identity();
                 if let Some(v) = v {
                     for (i, n) in v.into_iter().enumerate() {
@@ -358,7 +480,7 @@ impl<'a> Eval<'a> {
                 t
             }
             "scale" => {
-                let v = self.vec3_arg(bargs, "v", "scale", 1.0, true)?;
+                let v = self.vec3_arg(bargs, "v", "scale", Shape::SCALE)?;
                 let mut t = Transform::identity();
                 if let Some(v) = v {
                     for (i, n) in v.into_iter().enumerate() {
@@ -370,7 +492,7 @@ impl<'a> Eval<'a> {
             }
             "rotate" => self.rotation(bargs)?,
             "mirror" => {
-                let v = self.vec3_arg(bargs, "v", "mirror", 0.0, false)?;
+                let v = self.vec3_arg(bargs, "v", "mirror", Shape::MIRROR)?;
                 let v = v.map_or([1.0, 0.0, 0.0], |v| {
                     v.map(|n| {
                         self.freeze_num(&n, "a mirror normal");
@@ -391,10 +513,11 @@ impl<'a> Eval<'a> {
     fn rotation(&mut self, bargs: &BuiltinArgs) -> DResult<Transform> {
         let why = "a rotation angle";
         match bargs.get("a") {
-            Some((Value::Num(a), _)) => {
+            Some((Value::Num(a), span)) => {
+                self.finite(a, *span, "the angle of `rotate`")?;
                 let a = a.clone();
                 self.freeze_num(&a, why);
-                let axis = self.vec3_arg(bargs, "v", "rotate", 0.0, false)?;
+                let axis = self.vec3_arg(bargs, "v", "rotate", Shape::AXIS)?;
                 Ok(match axis {
                     Some(v) => rotate_axis(
                         a.value,
@@ -408,7 +531,7 @@ impl<'a> Eval<'a> {
             }
             Some((Value::Vector(_), _)) => {
                 let v = self
-                    .vec3_arg(bargs, "a", "rotate", 0.0, false)?
+                    .vec3_arg(bargs, "a", "rotate", Shape::ANGLES)?
                     .unwrap_or_else(|| std::array::from_fn(|_| Num::constant(0.0)));
                 Ok(rotate_xyz(v.map(|n| {
                     self.freeze_num(&n, why);
@@ -416,32 +539,37 @@ impl<'a> Eval<'a> {
                 })))
             }
             None => Ok(Transform::identity()),
-            Some((other, span)) => Err(Box::new(
-                Diagnostic::error(
-                    "E0108",
-                    "`rotate` needs a number or a vector of angles for `a`",
-                )
-                .at(*span, format!("this is {}", other.type_name())),
-            )),
+            Some((other, span)) => {
+                let (other, span) = (other.clone(), *span);
+                let text = "`rotate` needs a number or a vector of angles for `a`".to_string();
+                self.ignored_argument(text, span, &other, "no rotation");
+                Ok(Transform::identity())
+            }
         }
     }
 
     fn multmatrix(&mut self, bargs: &BuiltinArgs) -> DResult<Transform> {
         let mut t = Transform::identity();
-        let Some((v, span)) = bargs.get("m") else {
+        let Some((v, span)) = bargs.get("m").cloned() else {
             return Ok(t);
         };
-        let bad = || {
-            Box::new(
-                Diagnostic::error("E0108", "`multmatrix` needs a 3×4 or 4×4 matrix of numbers")
-                    .at(*span, format!("this is {}", v.type_name())),
-            )
+        let rows: Option<Vec<Vec<Num>>> = v.as_vec().and_then(|rows| {
+            rows.iter()
+                .take(3)
+                .map(|row| {
+                    let row = row.as_vec()?;
+                    row.iter().take(4).map(|x| x.as_num().cloned()).collect()
+                })
+                .collect()
+        });
+        let Some(rows) = rows else {
+            let text = "`multmatrix` needs a 3×4 or 4×4 matrix of numbers".to_string();
+            self.ignored_argument(text, span, &v, "the identity");
+            return Ok(t);
         };
-        let rows = v.as_vec().ok_or_else(bad)?;
-        for (i, row) in rows.iter().take(3).enumerate() {
-            let row = row.as_vec().ok_or_else(bad)?;
-            for (j, x) in row.iter().take(4).enumerate() {
-                let n = x.as_num().ok_or_else(bad)?.clone();
+        for (i, row) in rows.into_iter().enumerate() {
+            for (j, n) in row.into_iter().enumerate() {
+                self.finite(&n, span, "an entry of `multmatrix`")?;
                 if j < 3 {
                     self.freeze_num(&n, "a `multmatrix` coefficient");
                     t.m[i][j] = Num::constant(n.value);

@@ -295,12 +295,15 @@ impl<'a> Eval<'a> {
                     )),
             ));
         }
-        let mut d = Diagnostic::error("E0202", format!("unknown module `{name}`"))
-            .at(name_span, "no module of this name is defined");
+        let mut d = Diagnostic::warning("W0202", format!("unknown module `{name}`")).at(
+            name_span,
+            "no module of this name is defined: nothing is drawn here",
+        );
         if let Some(s) = super::suggest(name, &scope.visible_modules()) {
             d = d.with_note(format!("help: a module with a similar name exists: `{s}`"));
         }
-        Err(Box::new(d))
+        self.warnings.push(d.with_note(super::AS_OPENSCAD));
+        Ok(None)
     }
 
     #[allow(clippy::too_many_arguments)]
