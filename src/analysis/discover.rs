@@ -51,6 +51,22 @@ pub trait Similarity: Sync {
     fn removal_loss(&self, reference: &Self::Reference, part: usize) -> f64;
 }
 
+/// The similarity of `current` to the variation `sample` it was moved from, preparing the
+/// original as a reference (`original`) the first time it is needed. Only the slots that
+/// moved away from the sample are looked at again.
+pub fn fidelity<S: Similarity>(
+    sim: &S,
+    sample: &Sample,
+    current: &[f64],
+    original: &mut Option<S::Reference>,
+) -> f64 {
+    let away: Vec<u32> = (0..current.len() as u32)
+        .filter(|&s| current[s as usize] != sample.values[s as usize])
+        .collect();
+    let original = original.get_or_insert_with(|| sim.reference(&sample.values, &sample.optional));
+    sim.similarity_changed(current, &away, original)
+}
+
 /// One variation as discovery sees it: its slot values and the parts it does without.
 #[derive(Debug, Clone)]
 pub struct Sample {
@@ -163,13 +179,7 @@ fn move_variations<S: Similarity>(
             if let Some(r) = v.reference.as_mut() {
                 sim.update_reference(r, &v.current, &moved);
             }
-            let away: Vec<u32> = (0..v.current.len() as u32)
-                .filter(|&s| v.current[s as usize] != v.sample.values[s as usize])
-                .collect();
-            let original = v
-                .original
-                .get_or_insert_with(|| sim.reference(&v.sample.values, &v.sample.optional));
-            v.fidelity = sim.similarity_changed(&v.current, &away, original);
+            v.fidelity = fidelity(sim, v.sample, &v.current, &mut v.original);
         }
     }
     (dirty, moved_any)

@@ -22,7 +22,7 @@
 use super::candidates::Candidates;
 use super::chosen::{Chosen, candidates_by_slot, forget, rows_of};
 use super::classes::prior_log_odds;
-use super::discover::{Sample, Similarity};
+use super::discover::{Sample, Similarity, fidelity};
 use super::noise::{Evidence, NoiseModel};
 use super::pool::Pool;
 use super::project::{Faces, Projector};
@@ -364,13 +364,7 @@ fn move_points<S: Similarity>(
             }
         }
         if let (true, Some(sim)) = (moved, sim) {
-            let away: Vec<u32> = (0..p.current.len() as u32)
-                .filter(|&s| p.current[s as usize] != p.sample.values[s as usize])
-                .collect();
-            let original = p
-                .original
-                .get_or_insert_with(|| sim.reference(&p.sample.values, &p.sample.optional));
-            p.fidelity = sim.similarity_changed(&p.current, &away, original);
+            p.fidelity = fidelity(sim, p.sample, &p.current, &mut p.original);
         }
     }
     moved_any.sort_unstable();

@@ -416,22 +416,9 @@ impl Projector {
     }
 
     /// How `x` (which satisfies `basis`) moves so that `rows` also hold, as sparse
-    /// (slot, change) pairs; empty when nothing moves.
-    pub fn shift(
-        &mut self,
-        faces: &Faces,
-        basis: &RowBasis,
-        blocks: &mut SlotBlocks,
-        members: &HashMap<SlotId, Vec<SlotId>>,
-        x: &[f64],
-        rows: &[&Affine],
-    ) -> Vec<(SlotId, f64)> {
-        self.shift_and_cost(faces, basis, blocks, members, x, rows)
-            .0
-    }
-
-    /// [`Projector::shift`] and the move's squared length in the metric (`δᵀHδ`, which is
-    /// `eᵀ (n K nᵀ)⁺ e` for the rows' residuals `e`): what projecting onto `rows` costs.
+    /// (slot, change) pairs (empty when nothing moves), and the move's squared length in the
+    /// metric (`δᵀHδ`, which is `eᵀ (n K nᵀ)⁺ e` for the rows' residuals `e`): what
+    /// projecting onto `rows` costs.
     pub fn shift_and_cost(
         &mut self,
         faces: &Faces,
