@@ -1,11 +1,13 @@
 //! Anchors: where a re-parameterized model is pinned, and variations read in its frame.
 //!
-//! A model's sliders say nothing about where it stands, so three anchor rows pin it: the
-//! centre of its extreme faces in x and y and its floor in z ([`anchor_rows`]). A variation
+//! A model's sliders say nothing about where it stands, so anchor rows pin it: the centre
+//! of its extreme faces in x and y and its floor in z ([`anchor_rows`]), on each axis along
+//! which some slot change translates the whole model ([`translations`]). A variation
 //! is projected keeping its own place (anchors at its own centre and floor), then moved
 //! rigidly so its anchors are where the input has them ([`moved_to_input_anchor`]): sliders
-//! are read in the input's frame. Invariant: a move is applied only when some slot change
-//! translates every face alike (to the tolerance); otherwise the point is left as it is.
+//! are read in the input's frame. Invariant: an axis is pinned or moved only when some slot
+//! change translates every face alike along it (to the tolerance), so an anchor never pins
+//! a size.
 
 use super::linalg::least_norm_solve;
 use super::project::{Faces, project_onto};
@@ -14,14 +16,32 @@ use crate::ir::{Affine, Model, SlotId};
 use crate::tolerance::RELATIVE_EPSILON;
 
 /// Rows that pin the model in place: its centre in x and y and its floor in z, at the
-/// input. The faces used are the input's extremes.
+/// input, on each axis along which some slot change moves the whole model. The faces used
+/// are the input's extremes.
 pub fn anchor_rows(model: &Model) -> Vec<Affine> {
     anchor_rows_at(model, &model.slot_values())
 }
 
 /// The anchor rows with their constants taken at `at` instead of the input: the same
 /// faces, held where `at` has them (a variation keeps its own place while projected).
+///
+/// An axis gets a row only when the model can translate along it (see [`translations`]):
+/// where no slot change moves every face alike, the model's place on that axis is already
+/// fixed by its shape, and pinning its centre would pin a size instead.
 pub fn anchor_rows_at(model: &Model, at: &[f64]) -> Vec<Affine> {
+    let free = translations(model);
+    anchor_forms(model)
+        .into_iter()
+        .enumerate()
+        .filter(|(a, _)| free[*a].is_some())
+        .filter_map(|(_, f)| f)
+        .map(|f| f.sub(&Affine::constant(f.eval(at))))
+        .collect()
+}
+
+/// Each axis's anchor form: the centre of the input's extreme faces in x and y, the lowest
+/// face in z (`None` where those faces are not affine).
+fn anchor_forms(model: &Model) -> [Option<Affine>; 3] {
     let values = model.slot_values();
     let mut lo: [Option<(f64, Affine)>; 3] = Default::default();
     let mut hi: [Option<(f64, Affine)>; 3] = Default::default();
@@ -41,53 +61,66 @@ pub fn anchor_rows_at(model: &Model, at: &[f64]) -> Vec<Affine> {
             }
         }
     }
-    let mut rows = Vec::new();
-    for a in 0..2 {
-        if let (Some((_, l)), Some((_, h))) = (&lo[a], &hi[a]) {
-            let centre = l.add(h).scale(0.5);
-            rows.push(centre.sub(&Affine::constant(centre.eval(at))));
-        }
-    }
-    if let Some((_, l)) = &lo[2] {
-        rows.push(l.sub(&Affine::constant(l.eval(at))));
-    }
-    rows
+    std::array::from_fn(|a| match (&lo[a], &hi[a]) {
+        (Some((_, l)), Some((_, h))) if a < 2 => Some(l.add(h).scale(0.5)),
+        (Some((_, l)), _) if a == 2 => Some(l.clone()),
+        _ => None,
+    })
 }
 
-/// `x` moved rigidly (in slot space) so the model's anchors — centre in x and y, floor in
-/// z — are where the input has them: the smallest slot change that shifts every face by
-/// the same amount along its axis. Sliders are read in the input's frame; where no slot
-/// change translates the whole model, `x` is returned as it is.
-pub fn moved_to_input_anchor(model: &Model, x: &[f64]) -> Vec<f64> {
-    let at_input = anchor_rows_at(model, &model.slot_values());
-    let here = anchor_rows_at(model, x);
-    // anchor(x) − anchor(x0) per axis (x and y centres, z floor).
-    let shift: Vec<f64> = here
+/// For each axis, the smallest slot change that moves every face along that axis by one
+/// unit and no face along the others (`None`: the model cannot translate that way; a face
+/// no slot moves, or faces tied to sizes, prevent it).
+pub fn translations(model: &Model) -> [Option<Vec<f64>>; 3] {
+    let mut faces: Vec<(usize, &Affine)> = Vec::new();
+    let mut fixed = [false; 3];
+    let intervals: Vec<_> = model
+        .parts
         .iter()
-        .zip(&at_input)
-        .map(|(h, i)| h.constant - i.constant)
+        .filter(|p| p.misaligned.is_none())
+        .filter_map(world_intervals)
         .collect();
-    if shift.len() != 3 || shift.iter().all(|s| *s == 0.0) {
-        return x.to_vec();
-    }
-    let mut rows: Vec<(Vec<(SlotId, f64)>, f64)> = Vec::new();
-    for p in model.parts.iter().filter(|p| p.misaligned.is_none()) {
-        let Some(iv) = world_intervals(p) else {
-            continue;
-        };
+    for iv in &intervals {
         for (a, (lo, hi)) in iv.iter().enumerate() {
             for n in [lo, hi] {
-                if let Some(f) = n.affine() {
-                    rows.push((f.terms.clone(), shift[a]));
+                match n.affine() {
+                    Some(f) => faces.push((a, f)),
+                    None => fixed[a] = true,
                 }
             }
         }
     }
-    let (delta, residual) = least_norm_solve(&rows, model.slots.len());
-    if residual > RELATIVE_EPSILON * model.size().max(1.0) {
-        return x.to_vec();
+    let tolerance = RELATIVE_EPSILON * model.size().max(1.0);
+    let gauge = super::gauge::gauge_rows(model);
+    std::array::from_fn(|axis| {
+        if fixed[axis] {
+            return None;
+        }
+        // Slots the gauge holds stay held: a translation never needs them.
+        let rows: Vec<(Vec<(SlotId, f64)>, f64)> = faces
+            .iter()
+            .map(|(a, f)| (f.terms.clone(), if *a == axis { 1.0 } else { 0.0 }))
+            .chain(gauge.iter().map(|g| (g.terms.clone(), 0.0)))
+            .collect();
+        let (delta, residual) = least_norm_solve(&rows, model.slots.len());
+        (residual <= tolerance).then_some(delta)
+    })
+}
+
+/// `x` moved rigidly (in slot space) so the model's anchors — centre in x and y, floor in
+/// z — are where the input has them, along each axis the model can translate on: the
+/// smallest slot change that shifts every face by the same amount along its axis. Sliders
+/// are read in the input's frame.
+pub fn moved_to_input_anchor(model: &Model, x: &[f64]) -> Vec<f64> {
+    let values = model.slot_values();
+    let mut out = x.to_vec();
+    for (form, step) in anchor_forms(model).iter().zip(translations(model)) {
+        if let (Some(f), Some(step)) = (form, step) {
+            let shift = f.eval(&values) - f.eval(x);
+            out.iter_mut().zip(&step).for_each(|(o, d)| *o += shift * d);
+        }
     }
-    x.iter().zip(delta.iter()).map(|(a, b)| a + b).collect()
+    out
 }
 
 /// Each variation (slot values, with the parts it does without) projected onto `rows` and
@@ -100,12 +133,13 @@ pub fn project_variations(
     values: &[Vec<f64>],
     optional: &[Vec<usize>],
 ) -> Vec<Vec<f64>> {
+    let gauge = super::gauge::gauge_rows(model);
     values
         .iter()
         .zip(optional)
         .map(|(v, o)| {
             let anchors = anchor_rows_at(model, v);
-            let all_rows: Vec<&Affine> = rows.iter().chain(anchors.iter()).collect();
+            let all_rows: Vec<&Affine> = rows.iter().chain(&gauge).chain(&anchors).collect();
             let p = project_onto(faces, v, &all_rows, o);
             moved_to_input_anchor(model, &p)
         })

@@ -1,9 +1,11 @@
-//! Candidate relations: every coplanarity, coaxiality, coincidence and equality that holds
-//! on the input.
+//! Candidate relations: every coplanarity, coaxiality, coincidence, equality and tangency
+//! that holds on the input.
 //!
-//! The four kinds are the paper's (see `paper-models.md`): coplanar face planes with the same
+//! Four kinds are the paper's (see `paper-models.md`): coplanar face planes with the same
 //! normal axis, coaxial axis lines with the same direction, coincident key points, equal
-//! extents. A candidate holds when each of its equations' residuals is within the model's
+//! extents. The fifth, tangency, pairs a round part's side plane with a face plane or
+//! another round side normal to the same axis (a board on an axle, wheels on one floor); it
+//! is offered to discovery but not counted among the paper's base constraints. A candidate holds when each of its equations' residuals is within the model's
 //! tolerance. Features are sorted by value and paired inside a sliding window, so the work is
 //! O(n log n + pairs), never all pairs. Every holding pair is counted, redundant or not: that
 //! count is the paper's "base constraints".
@@ -19,14 +21,27 @@ pub enum RelationKind {
     Coaxial,
     Coincident,
     Equal,
+    /// A face plane (or another round part's side) touching a round part's curved side:
+    /// not one of the paper's kinds, so not in its base constraint count.
+    Tangent,
 }
 
 impl RelationKind {
-    pub const ALL: [RelationKind; 4] = [
+    /// The paper's four kinds: what its base constraint count counts.
+    pub const PAPER: [RelationKind; 4] = [
         RelationKind::Coplanar,
         RelationKind::Coaxial,
         RelationKind::Coincident,
         RelationKind::Equal,
+    ];
+
+    /// Every kind discovery knows.
+    pub const ALL: [RelationKind; 5] = [
+        RelationKind::Coplanar,
+        RelationKind::Coaxial,
+        RelationKind::Coincident,
+        RelationKind::Equal,
+        RelationKind::Tangent,
     ];
 
     pub fn name(self) -> &'static str {
@@ -35,6 +50,7 @@ impl RelationKind {
             RelationKind::Coaxial => "coaxial",
             RelationKind::Coincident => "coincident",
             RelationKind::Equal => "equal",
+            RelationKind::Tangent => "tangent",
         }
     }
 
@@ -44,6 +60,7 @@ impl RelationKind {
             RelationKind::Coaxial => "is coaxial with",
             RelationKind::Coincident => "coincides with",
             RelationKind::Equal => "equals",
+            RelationKind::Tangent => "is tangent to",
         }
     }
 }
@@ -117,9 +134,10 @@ impl Candidates {
             + self.unlisted.get(&kind).copied().unwrap_or(0)
     }
 
-    /// The paper's "base constraints": every holding pair, redundant or not.
+    /// The paper's "base constraints": every holding pair of its four kinds, redundant or
+    /// not.
     pub fn total(&self) -> usize {
-        RelationKind::ALL.iter().map(|&k| self.count(k)).sum()
+        RelationKind::PAPER.iter().map(|&k| self.count(k)).sum()
     }
 }
 
@@ -155,13 +173,27 @@ pub fn affine_features(model: &Model) -> Vec<AffineFeature> {
         .collect()
 }
 
-/// Which relation two features of this kind can have, and the group they must share.
+/// Which relation two features of this kind can have, and the group they must share (a
+/// round part's side shares the face planes' group: see [`pair_kind`]).
 fn relation_of(kind: FeatureKind) -> (RelationKind, u8) {
     match kind {
-        FeatureKind::Plane { axis, .. } => (RelationKind::Coplanar, axis),
+        FeatureKind::Plane { axis, .. } | FeatureKind::Side { axis, .. } => {
+            (RelationKind::Coplanar, axis)
+        }
         FeatureKind::AxisLine { axis } => (RelationKind::Coaxial, axis),
         FeatureKind::Point { .. } => (RelationKind::Coincident, 0),
         FeatureKind::Extent { .. } => (RelationKind::Equal, 0),
+    }
+}
+
+/// The relation between two features of one group: tangent when either is a round
+/// part's side, else the group's kind.
+fn pair_kind(group: RelationKind, a: &AffineFeature, b: &AffineFeature) -> RelationKind {
+    let side = |f: &AffineFeature| matches!(f.kind, FeatureKind::Side { .. });
+    if side(a) || side(b) {
+        RelationKind::Tangent
+    } else {
+        group
     }
 }
 
@@ -178,12 +210,13 @@ pub const RUN_NEIGHBOURS: usize = 8;
 /// One feature per class of identical features (same relation group, same forms), with
 /// each class's size.
 fn feature_classes(model: &Model) -> (Vec<AffineFeature>, Vec<usize>) {
-    let mut class_of: std::collections::HashMap<((RelationKind, u8), Vec<u64>), usize> =
-        Default::default();
+    type Key = ((RelationKind, u8), bool, Vec<u64>);
+    let mut class_of: std::collections::HashMap<Key, usize> = Default::default();
     let mut features: Vec<AffineFeature> = Vec::new();
     let mut class_sizes: Vec<usize> = Vec::new();
     for f in affine_features(model) {
-        let key = (relation_of(f.kind), form_key(&f.forms));
+        let side = matches!(f.kind, FeatureKind::Side { .. });
+        let key = (relation_of(f.kind), side, form_key(&f.forms));
         match class_of.get(&key) {
             Some(&i) => class_sizes[i] += 1,
             None => {
@@ -237,7 +270,7 @@ pub fn find_candidates_for(model: &Model, variations: &[Vec<f64>]) -> Candidates
     for (i, f) in features.iter().enumerate() {
         let (kind, g) = relation_of(f.kind);
         let k = class_sizes[i];
-        *identical.entry(kind).or_insert(0) += k * (k - 1) / 2;
+        *identical.entry(pair_kind(kind, f, f)).or_insert(0) += k * (k - 1) / 2;
         groups.entry((kind, g)).or_default().push(i);
     }
     let mut list = Vec::new();
@@ -282,35 +315,41 @@ pub fn find_candidates_for(model: &Model, variations: &[Vec<f64>]) -> Candidates
                     }
                 }
             } else {
-                let mut all = 0usize;
+                let mut all: std::collections::BTreeMap<RelationKind, usize> = Default::default();
                 for (pos, &x) in run.iter().enumerate() {
                     for &y in &run[pos + 1..] {
                         if features[y].values[0] - features[x].values[0] > tolerance.epsilon {
                             break;
                         }
                         if holds(x, y) {
-                            all += class_sizes[x] * class_sizes[y];
+                            let k = pair_kind(kind, &features[x], &features[y]);
+                            *all.entry(k).or_insert(0) += class_sizes[x] * class_sizes[y];
                         }
                     }
                 }
                 let mut order: Vec<(Vec<i64>, usize)> =
                     run.iter().map(|&x| (signature(x), x)).collect();
                 order.sort();
-                let mut listed = 0usize;
                 for (pos, (_, x)) in order.iter().enumerate() {
                     for (_, y) in order.iter().skip(pos + 1).take(RUN_NEIGHBOURS) {
                         if holds(*x, *y) {
                             pairs.push((*x, *y));
-                            listed += class_sizes[*x] * class_sizes[*y];
+                            let k = pair_kind(kind, &features[*x], &features[*y]);
+                            if let Some(n) = all.get_mut(&k) {
+                                *n = n.saturating_sub(class_sizes[*x] * class_sizes[*y]);
+                            }
                         }
                     }
                 }
-                *unlisted.entry(kind).or_insert(0) += all.saturating_sub(listed);
+                for (k, n) in all {
+                    *unlisted.entry(k).or_insert(0) += n;
+                }
             }
             start = end;
         }
         list.extend(pairs.into_iter().map(|(x, y)| {
             let (a, b) = if x < y { (x, y) } else { (y, x) };
+            let kind = pair_kind(kind, &features[a], &features[b]);
             candidate(kind, &features, &class_sizes, a, b)
         }));
     }

@@ -6,7 +6,8 @@
 //! every relation against both, which chooses the relations the
 //! variations keep (`prior` without variations); `discover` is the paper's own greedy by
 //! IoU and `cutoff` its change points on the distortion curve; `reparam` solves
-//! them for a few free variables, `anchors` pins the model in place and `project` reads the
+//! them for a few free variables, `anchors` pins the model in place, `gauge` holds slot
+//! changes that change no part, and `project` reads the
 //! variations on the kept relations; `names` and `ranges` make the sliders, keeping the `contacts` the variations keep. `similarity` is
 //! the model's IoU between two settings (exact volumes, from `geom`); `linalg`, `rowbasis`,
 //! `slotblocks`, `chosen` and `pool` are the shared machinery. Floats are compared only against
@@ -19,6 +20,7 @@ pub mod classes;
 pub mod contacts;
 pub mod cutoff;
 pub mod discover;
+pub mod gauge;
 pub mod intent;
 pub mod linalg;
 pub mod names;

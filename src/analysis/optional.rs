@@ -7,8 +7,9 @@
 //! over the part's largest side in the variation, is its *visible thickness*; the part is
 //! dropped when that is within one noise deviation `σ` of nothing (a present part's faces
 //! are rarely that close together by chance) and below half of what the input shows of it,
-//! or, for exact variations, when it changes less than the float tolerance's share of the
-//! part's own volume. So a thin board whose numbers are noisy is still there. A part the
+//! or, for exact variations (`sigma` 0: typed files, where a part is left out by typing a
+//! zero), when it changes less than the float tolerance's share of the part's own volume
+//! and one of its extents is zero (a negative size that draws nothing is noise past zero). So a thin board whose numbers are noisy is still there. A part the
 //! input does not show either (hidden inside others) is never optional: leaving it out
 //! changes no variation, so there is nothing to switch. Parts optional in exactly the same
 //! set of variations form one toggle (a Customizer checkbox, on by default).
@@ -48,6 +49,16 @@ fn box_at(part: &Part, x: &[f64]) -> (f64, f64) {
     (thinnest, area)
 }
 
+/// Whether the part has an extent of zero (within `eps`) at `x`: some size typed as 0. A
+/// part without affine world intervals counts as zero-sized where it draws nothing.
+fn zero_sized(part: &Part, x: &[f64], eps: f64) -> bool {
+    let Some(iv) = world_intervals(part) else {
+        return true;
+    };
+    let at = |n: &crate::ir::Num| n.affine().map_or(n.value, |a| a.eval(x));
+    iv.iter().any(|(lo, hi)| (at(hi) - at(lo)).abs() <= eps)
+}
+
 /// For each variation, the parts it does without, for variations whose faces carry noise
 /// of `sigma` (world units; 0 for exact variations).
 pub fn optional_parts<S: Similarity>(
@@ -61,6 +72,7 @@ pub fn optional_parts<S: Similarity>(
     let parts = model.parts.len();
     let shown: Vec<f64> = (0..parts).map(|p| sim.removal_loss(&input, p)).collect();
     let at_input: Vec<(f64, f64)> = model.parts.iter().map(|p| box_at(p, &x0)).collect();
+    let eps = crate::tolerance::Tolerance::for_size(model.size()).epsilon;
     variations
         .iter()
         .map(|v| {
@@ -69,6 +81,12 @@ pub fn optional_parts<S: Similarity>(
                 .filter(|&p| shown[p] >= OPTIONAL_THRESHOLD)
                 .filter(|&p| {
                     let loss = sim.removal_loss(&whole, p);
+                    if sigma <= 0.0 {
+                        // Exact variations: a part is left out by a zero, not by a size
+                        // that only happens to draw nothing (a negative radius is a number
+                        // the noise moved past zero, and the part is still meant).
+                        return loss < OPTIONAL_THRESHOLD && zero_sized(&model.parts[p], v, eps);
+                    }
                     if loss < OPTIONAL_THRESHOLD {
                         return true;
                     }

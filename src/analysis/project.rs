@@ -1,7 +1,8 @@
 //! Projection of a variation onto a constraint set (Algorithm 1 of the paper's supplement).
 //!
 //! The cost of a projection is the squared volume its face shifts sweep: every axis-aligned
-//! face (a box's six, a frustum's two ends and four side extremes) is an affine form `q·x`,
+//! face (a box's six, a frustum's two ends and four side extremes, and a cone's smaller
+//! cap's four extremes, which its box does not show) is an affine form `q·x`,
 //! weighted by its area (×π/4 for frustums). With `H = Σ area² q qᵀ + ridge`, projecting `x`
 //! onto `{x : B x = b}` is the `H`-metric projection. The areas are read once per variation
 //! ([`Metric`]), so projections onto growing constraint sets nest exactly: projecting a point
@@ -39,7 +40,19 @@ struct PartFaces {
     part: usize,
     /// (low, high) face form along each world axis.
     intervals: [(Affine, Affine); 3],
+    /// A cone's (or a two-radius cylinder's) smaller cap across its axis: `(axis, low,
+    /// high)` faces the box does not show, weighed like the box's faces on that axis.
+    cap: Vec<(usize, Affine, Affine)>,
     round: bool,
+}
+
+impl PartFaces {
+    /// Every face form with the world axis it is normal to: the box's, then the cap's.
+    fn forms(&self) -> impl Iterator<Item = (usize, &Affine)> {
+        let boxed =
+            (0..3).flat_map(move |a| [(a, &self.intervals[a].0), (a, &self.intervals[a].1)]);
+        boxed.chain(self.cap.iter().flat_map(|(a, lo, hi)| [(*a, lo), (*a, hi)]))
+    }
 }
 
 /// Squared face areas of every part at one point: the weights of the projection metric.
@@ -67,9 +80,15 @@ impl Faces {
                     (form(&iv[1].0)?, form(&iv[1].1)?),
                     (form(&iv[2].0)?, form(&iv[2].1)?),
                 ];
+                let cap = crate::ir::feature::smaller_cap(p)
+                    .iter()
+                    .map(|(a, lo, hi)| Some((*a, form(lo)?, form(hi)?)))
+                    .collect::<Option<Vec<_>>>()
+                    .unwrap_or_default();
                 Some(PartFaces {
                     part: i,
                     intervals,
+                    cap,
                     round: !matches!(p.primitive, Primitive::Cube { .. }),
                 })
             })
@@ -77,8 +96,8 @@ impl Faces {
         let slots = model.slots.len();
         let mut parts_of_slot = vec![Vec::new(); slots];
         for (k, pf) in parts.iter().enumerate() {
-            for (lo, hi) in &pf.intervals {
-                for s in lo.slots().chain(hi.slots()) {
+            for (_, f) in pf.forms() {
+                for s in f.slots() {
                     let list: &mut Vec<u32> = &mut parts_of_slot[s as usize];
                     if list.last() != Some(&(k as u32)) {
                         list.push(k as u32);
@@ -110,19 +129,19 @@ impl Faces {
                 let ext: [f64; 3] = std::array::from_fn(|a| {
                     (pf.intervals[a].1.eval(x) - pf.intervals[a].0.eval(x)).abs()
                 });
-                std::array::from_fn(|a| {
+                let w: [f64; 3] = std::array::from_fn(|a| {
                     let mut area = ext[(a + 1) % 3] * ext[(a + 2) % 3];
                     if pf.round {
                         area *= std::f64::consts::FRAC_PI_4;
                     }
-                    let w2 = area * area;
-                    for f in [&pf.intervals[a].0, &pf.intervals[a].1] {
-                        for &(s, c) in &f.terms {
-                            diagonal[s as usize] += w2 * c * c;
-                        }
+                    area * area
+                });
+                for (a, f) in pf.forms() {
+                    for &(s, c) in &f.terms {
+                        diagonal[s as usize] += w[a] * c * c;
                     }
-                    w2
-                })
+                }
+                w
             })
             .collect();
         let scale = diagonal.iter().fold(0.0f64, |m, &v| m.max(v)).max(1.0);
@@ -149,8 +168,8 @@ impl Faces {
             .collect();
         let mut diagonal = vec![0.0f64; self.slots];
         for pf in &self.parts {
-            for (lo, hi) in &pf.intervals {
-                for &(s, c) in lo.terms.iter().chain(&hi.terms) {
+            for (_, f) in pf.forms() {
+                for &(s, c) in &f.terms {
                     diagonal[s as usize] += c * c;
                 }
             }
@@ -171,11 +190,9 @@ impl Faces {
         entries.iter().flat_map(move |&k| {
             let pf = &self.parts[k as usize];
             let w = metric.weights[k as usize];
-            (0..3).flat_map(move |a| {
-                [(w[a], &pf.intervals[a].0), (w[a], &pf.intervals[a].1)]
-                    .into_iter()
-                    .filter(|(w2, _)| *w2 != 0.0)
-            })
+            pf.forms()
+                .map(move |(a, f)| (w[a], f))
+                .filter(|(w2, _)| *w2 != 0.0)
         })
     }
 }
@@ -186,6 +203,9 @@ impl SlotBlocks {
         let mut b = SlotBlocks::new(faces.slots);
         for pf in &faces.parts {
             for (lo, hi) in &pf.intervals {
+                b.join(lo.slots().chain(hi.slots()));
+            }
+            for (_, lo, hi) in &pf.cap {
                 b.join(lo.slots().chain(hi.slots()));
             }
         }

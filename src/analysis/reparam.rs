@@ -7,6 +7,7 @@
 //! with partial pivoting and the results are read back as exact fractions (`Frac`).
 
 use super::anchors::anchor_rows;
+use super::gauge::gauge_rows;
 use super::linalg::rank;
 use super::rowbasis::RowBasis;
 use crate::ir::{Affine, Model, SlotId};
@@ -215,7 +216,7 @@ fn gauss_jordan(system: &[Affine], order: &[usize]) -> (Vec<SparseRow>, Vec<usiz
     (ordered.into_iter().map(|(_, r)| r).collect(), pivots)
 }
 
-/// Solves `rows` (affine, each `= 0`) plus the anchors for the free slots.
+/// Solves `rows` (affine, each `= 0`) plus the gauge and the anchors for the free slots.
 pub fn solve(model: &Model, rows: &[Affine]) -> Solution {
     let d = model.slots.len();
     let mut basis = RowBasis::default();
@@ -223,6 +224,11 @@ pub fn solve(model: &Model, rows: &[Affine]) -> Solution {
     for r in rows {
         if basis.add_terms(&r.terms) {
             system.push(r.clone());
+        }
+    }
+    for r in gauge_rows(model) {
+        if basis.add_terms(&r.terms) {
+            system.push(r);
         }
     }
     let mut anchors = 0;

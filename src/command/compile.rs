@@ -14,7 +14,7 @@ use crate::analysis::contacts::common_contacts;
 use crate::analysis::cutoff::{Cutoff, change_points};
 use crate::analysis::discover::{Sample, Similarity};
 use crate::analysis::find_candidates_for;
-use crate::analysis::intent::{Selection, estimate_noise, select};
+use crate::analysis::intent::{Selection, select};
 use crate::analysis::noise::NoiseModel;
 use crate::analysis::optional::{held_where_skipped, optional_parts, toggles};
 use crate::analysis::prior::structural_prior;
@@ -146,16 +146,10 @@ pub fn reparameterize(
     // Optional parts: what each variation does without, kept at the input's shape.
     let sim = VolumeSimilarity::new(model);
     let faces = Faces::of(model);
-    let floor = Tolerance::for_size(model.size()).epsilon;
-    let whole: Vec<Sample> = raw
-        .iter()
-        .map(|v| Sample {
-            values: v.clone(),
-            optional: Vec::new(),
-        })
-        .collect();
-    let sigma = estimate_noise(&faces, &candidates, &whole, floor).sigma;
-    let optional = optional_parts(model, &raw, &sim, sigma);
+    // Typed variations drop a part by a zero or by leaving it out, so nothing of a part a
+    // variation does without is left for noise to displace: the absent test is exact.
+    // (Variations fitted from pictures would bring their own per-number deviations.)
+    let optional = optional_parts(model, &raw, &sim, 0.0);
     let values = held_where_skipped(model, &raw, &optional);
     // Discovery (or the prior): which relations to keep.
     let choice = if variations.is_empty() {

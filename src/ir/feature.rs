@@ -8,7 +8,9 @@
 //! Which features a part has is the paper's definition: a box has six face planes, three
 //! axis lines, eight corners and three extents; a cylinder or cone two end planes, one axis
 //! line, two end-cap centres and three extents (its bounding box); a sphere its centre and
-//! three extents.
+//! three extents. Beyond the paper, a round part also has the planes its curved side
+//! touches (four for a cylinder or cone, six for a sphere): the paper's four relation kinds
+//! cannot say that a board rests on an axle.
 
 use super::num::{FreezeSide, Num};
 use super::part::{Part, Primitive};
@@ -31,6 +33,10 @@ pub enum FeatureKind {
     Point { sides: [bool; 3], cap: bool },
     /// The extent along `axis`.
     Extent { axis: u8 },
+    /// A plane a round part's curved side touches, normal to `axis` (across the part's own
+    /// axis), on its low or high side: where a board resting on an axle or a wheel on the
+    /// floor meets it. Not one of the paper's features.
+    Side { axis: u8, high: bool },
 }
 
 /// One feature of one part, with its numbers.
@@ -112,6 +118,33 @@ pub fn world_intervals(part: &Part) -> Option<[(Num, Num); 3]> {
     }))
 }
 
+/// The smaller cap of a cylinder or cone whose two radii are different numbers: its world
+/// interval along each axis across the part's own, `(axis, low, high)`, which the part's
+/// box (drawn by the larger radius) does not show. Empty for other parts, and where both
+/// radii are the very same number (`r = …`), since the box shows both caps then.
+pub fn smaller_cap(part: &Part) -> Vec<(usize, Num, Num)> {
+    let Primitive::Cylinder { r1, r2, .. } = &part.primitive else {
+        return Vec::new();
+    };
+    let (Some(align), Some(axis)) = (alignment(part), cylinder_axis(part)) else {
+        return Vec::new();
+    };
+    if r1.form == r2.form {
+        return Vec::new();
+    }
+    // The box takes r1 unless r2 is larger (`local_shape`); this is the other one.
+    let r = if r2.value > r1.value { r1 } else { r2 };
+    (0..3)
+        .filter(|&i| i != axis)
+        .map(|i| {
+            let (j, sign) = align[i];
+            let (t, w) = (&part.world.m[i][3], &part.world.m[i][j]);
+            let (a, b) = (place(t, w, &r.neg()), place(t, w, r));
+            if sign > 0.0 { (i, a, b) } else { (i, b, a) }
+        })
+        .collect()
+}
+
 /// The world axis a cylinder's local z maps to.
 fn cylinder_axis(part: &Part) -> Option<usize> {
     let align = alignment(part)?;
@@ -128,18 +161,36 @@ pub fn part_features(part: &Part, index: usize) -> Option<Vec<Feature>> {
     let iv = world_intervals(part)?;
     let mut found = match &part.primitive {
         Primitive::Cube { .. } => box_features(&iv),
-        Primitive::Cylinder { .. } => cylinder_features(&iv, cylinder_axis(part)?),
+        Primitive::Cylinder { .. } => {
+            let axis = cylinder_axis(part)?;
+            let mut found = cylinder_features(&iv, axis);
+            found.extend(side_planes(&iv, Some(axis)));
+            found
+        }
         Primitive::Sphere { .. } => {
             let sides = [false; 3];
             let nums = (0..3).map(|a| center(&iv, a)).collect();
-            vec![(
+            let mut found = vec![(
                 FeatureKind::Point { sides, cap: true },
                 "center".into(),
                 nums,
-            )]
+            )];
+            found.extend(side_planes(&iv, None));
+            found
         }
     };
     found.extend(extent_features(&iv, axial_axis(part)));
+    // The smaller cap's width, so a relation can say a cylinder's two radii are one.
+    if let Some((axis, lo, hi)) = smaller_cap(part).into_iter().next() {
+        let top =
+            matches!(&part.primitive, Primitive::Cylinder { r1, r2, .. } if r2.value <= r1.value);
+        let role = if top { "top_width" } else { "bottom_width" };
+        found.push((
+            FeatureKind::Extent { axis: axis as u8 },
+            role.to_string(),
+            vec![hi.sub(&lo)],
+        ));
+    }
     let features = found.into_iter().map(|(kind, role, nums)| Feature {
         part: index,
         kind,
@@ -234,6 +285,27 @@ fn cylinder_features(iv: &[(Num, Num); 3], axis: usize) -> Vec<Described> {
         out.push((FeatureKind::Point { sides, cap: true }, role, nums));
     }
     out
+}
+
+/// A round part's side extremes: the planes its curved side touches on each axis across
+/// `axis` (every axis for a sphere, `axis` `None`), named like a box's faces.
+fn side_planes(iv: &[(Num, Num); 3], axis: Option<usize>) -> Vec<Described> {
+    (0..3)
+        .filter(|&a| Some(a) != axis)
+        .flat_map(|a| {
+            [(false, &iv[a].0), (true, &iv[a].1)].map(|(high, n)| {
+                let kind = FeatureKind::Side {
+                    axis: a as u8,
+                    high,
+                };
+                (
+                    kind,
+                    FACE_NAMES[a][high as usize].to_string(),
+                    vec![n.clone()],
+                )
+            })
+        })
+        .collect()
 }
 
 /// The three extents (`length` along a round part's axis).
