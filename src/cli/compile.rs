@@ -6,8 +6,7 @@
 
 use super::{EXIT_IO_ERROR, check_outputs, inputs_of, or_report, print_stdout, report};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use reparamc::back::plot::PlotFormat;
-use reparamc::command::compile::{CompileOptions, Options, compile};
+use reparamc::command::compile::{CompileOptions, Options, PlotFormat, compile};
 use reparamc::command::pictures::Progress;
 use reparamc::front::source::SourceMap;
 use reparamc::output::write_atomic;

@@ -27,7 +27,7 @@ use crate::back::diff::unified_diff;
 use crate::back::emit::{EmitPlan, emit};
 use crate::back::gallery::Gallery;
 use crate::back::plan::{PlanInputs, plan};
-use crate::back::plot::PlotFormat;
+pub use crate::back::plot::PlotFormat;
 use crate::back::presets::presets_json;
 use crate::back::report::{ChosenRelation, FreeVariableReport, Report, VariationReport};
 use crate::front::diag::{DResult, Diagnostic};
