@@ -34,7 +34,7 @@ const STYLE: &str = "body{font-family:sans-serif;max-width:1100px;margin:2em aut
 h1{font-size:1.6em}h2{margin-top:1.6em;border-bottom:1px solid #ccc}\
 table{border-collapse:collapse;width:100%}td,th{border:1px solid #ddd;padding:4px 8px;text-align:left;vertical-align:top}\
 th{background:#f4f4f4}.views img,.gallery img{max-width:100%;border:1px solid #ddd}\
-.views{display:flex;flex-wrap:wrap;gap:8px}.views figure{margin:0}figcaption{text-align:center;color:#555}\
+.views{display:flex;flex-wrap:wrap;gap:8px}.views img{width:240px}.views figure{margin:0}figcaption{text-align:center;color:#555}\
 code{background:#f4f4f4;padding:0 3px}.left{color:#844}.small{color:#666;font-size:.9em}";
 
 /// The page as HTML text; an error when a picture cannot be drawn.
@@ -117,13 +117,18 @@ fn sliders(h: &mut String, p: &PageInputs) {
             .collect();
         let _ = writeln!(
             h,
-            "<tr><td><code>{}</code></td><td>{}</td><td>{} to {}</td><td>{}</td><td>{} numbers: {}</td></tr>",
+            "<tr><td><code>{}</code></td><td>{}</td><td>{} to {}</td><td>{}</td><td>{} {}: {}</td></tr>",
             escape(&s.name),
             escape(&s.description),
             s.range.min,
             s.range.max,
             s.value,
             driven.len(),
+            if driven.len() == 1 {
+                "number"
+            } else {
+                "numbers"
+            },
             driven.join(", ")
         );
     }
