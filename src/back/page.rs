@@ -175,6 +175,16 @@ fn relations(h: &mut String, r: &Report) {
     *h += "</ol>\n";
     let left = &r.chosen[keep..];
     let implied = r.base_constraint_count.saturating_sub(r.chosen.len());
+    if r.cutoff.is_none() {
+        if implied > 0 {
+            let _ = writeln!(
+                h,
+                "<h2>Relations left out ({implied})</h2>\n<p>{implied} more relations hold on the input; with no variations to test them, the choice ({}) leaves them out.</p>",
+                escape(&r.method)
+            );
+        }
+        return;
+    }
     if left.is_empty() && implied == 0 {
         return;
     }

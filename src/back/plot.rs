@@ -23,6 +23,8 @@ pub const LOG_SPAN: f64 = 100.0;
 pub const Y_LABEL: &str = "distortion (1 − mean IoU of the variations)";
 /// The x axis's label.
 pub const X_LABEL: &str = "relations kept (in the order chosen)";
+/// The top of a linear y axis below which its labels are in scientific notation.
+const SMALL_SCALE: f64 = 0.01;
 /// The most characters of the cutoff's reason on one line under the chart.
 const REASON_LINE: usize = 130;
 
@@ -90,6 +92,8 @@ impl Scale {
     fn label(&self, y: f64) -> String {
         if self.log {
             format!("{:.0e}", 10f64.powf(y))
+        } else if self.hi < SMALL_SCALE {
+            format!("{y:.1e}")
         } else {
             format!("{y:.3}")
         }
@@ -204,6 +208,17 @@ fn draw<DB: DrawingBackend>(
         .axis_desc_style((FAMILY, 16))
         .label_style((FAMILY, 13))
         .draw()?;
+    if n == 0 {
+        let grey = RGBColor(110, 110, 110);
+        let style = TextStyle::from((FAMILY, 18)).color(&grey);
+        let (x, y) = chart.backend_coord(&(0, scale.hi));
+        chart_area.draw_text(
+            "the curve is measured on variations (--vary)",
+            &style,
+            (x + 40, y + 60),
+        )?;
+        return Ok(Vec::new());
+    }
     let shade = RGBColor(60, 170, 90);
     chart
         .draw_series(std::iter::once(Rectangle::new(
