@@ -332,3 +332,42 @@ fn the_command_writes_each_format_its_file_names_and_keeps_the_json_report() {
     assert!(!err.contains('\r') && !err.contains('\u{1b}'), "{err:?}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn a_long_job_shows_its_progress_on_a_terminal() {
+    // `script` (util-linux) runs the command on a pseudo-terminal and copies what it drew.
+    let dir = common::tempfile(Path::new("tty"), "d");
+    std::fs::create_dir_all(&dir).expect("a scratch folder");
+    let vary = common::repo().join("examples/variations/chair");
+    let mut line = format!(
+        "{} {} -o {}",
+        env!("CARGO_BIN_EXE_reparamc"),
+        common::repo().join("examples/chair.scad").display(),
+        dir.join("out.scad").display()
+    );
+    for v in VARIATIONS {
+        line += &format!(" --vary {}", vary.join(format!("{v}.scad")).display());
+    }
+    // The page's pictures take more than the second the bar waits for.
+    line += &format!(" --report {}", dir.join("r.html").display());
+    let start = std::time::Instant::now();
+    let run = Command::new("script")
+        .args(["-qefc", &line, "/dev/null"])
+        .output()
+        .expect("`script` (util-linux) runs");
+    let took = start.elapsed();
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let tty = String::from_utf8_lossy(&run.stdout);
+    // The bar shows once the job has run a second (under `cargo test` it runs about three).
+    let shown = tty.contains("writing the report page");
+    assert!(
+        shown || took.as_secs_f64() < 1.5,
+        "no progress bar in {took:?}: {tty:?}"
+    );
+    assert!(tty.contains("sliders drive"), "no summary line: {tty:?}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
