@@ -87,12 +87,7 @@ pub fn tiles(solution: &Solution, plan: &EmitPlan) -> Vec<Tile> {
 pub fn cameras(model: &Model, tiles: &[Tile], views: usize) -> Result<Vec<Camera>, String> {
     let mut bounds: Option<([f64; 3], [f64; 3])> = None;
     for t in tiles {
-        for (i, p) in model
-            .parts_at(&t.values)
-            .unwrap_or_default()
-            .iter()
-            .enumerate()
-        {
+        for (i, p) in parts_of(model, t)?.iter().enumerate() {
             if t.skip.contains(&i) {
                 continue;
             }
@@ -110,16 +105,27 @@ pub fn cameras(model: &Model, tiles: &[Tile], views: usize) -> Result<Vec<Camera
     default_views(lo, hi, views, 2 * TILE_W, 2 * TILE_H).map_err(|e| e.to_string())
 }
 
+/// The parts of the model in state `tile`; an error when a number is not affine in the
+/// slots (drawing it would need the program run again).
+fn parts_of(model: &Model, tile: &Tile) -> Result<Vec<crate::ir::Part>, String> {
+    model.parts_at(&tile.values).ok_or_else(|| {
+        format!(
+            "`{}` needs the program run again at its values (a number is not affine in the model's numbers)",
+            tile.name
+        )
+    })
+}
+
 /// The model in state `tile` seen by `camera`, antialiased to half the camera's size.
-pub fn render_tile(model: &Model, tile: &Tile, camera: &Camera) -> Rgb {
-    let parts = model.parts_at(&tile.values).unwrap_or_default();
+pub fn render_tile(model: &Model, tile: &Tile, camera: &Camera) -> Result<Rgb, String> {
+    let parts = parts_of(model, tile)?;
     let (w, h) = (camera.width.div_ceil(2), camera.height.div_ceil(2));
-    match model.csg.without(&tile.skip) {
+    Ok(match model.csg.without(&tile.skip) {
         Some(csg) if !parts.is_empty() => {
             picture(&render_hard(&parts, &csg, camera), DEFAULT_SHADE).resize(w, h)
         }
         _ => Rgb::new(w, h, BACKGROUND),
-    }
+    })
 }
 
 /// The gallery of `tiles` as a labelled PNG.
@@ -129,10 +135,10 @@ pub fn gallery(model: &Model, tiles: &[Tile]) -> Result<Gallery, String> {
         .into_iter()
         .next()
         .ok_or("no camera frames the model")?;
-    let images: Vec<Rgb> = tiles
+    let images = tiles
         .iter()
         .map(|t| render_tile(model, t, &camera))
-        .collect();
+        .collect::<Result<Vec<Rgb>, String>>()?;
     let (width, height) = size(tiles.len());
     let mut buf = vec![255u8; (width * height * 3) as usize];
     for (k, img) in images.iter().enumerate() {

@@ -83,7 +83,7 @@ fn views(h: &mut String, p: &PageInputs) -> Result<(), String> {
     let cams = cameras(p.model, std::slice::from_ref(&tile), VIEWS)?;
     *h += "<h2>The model</h2>\n<div class=\"views\">\n";
     for c in &cams {
-        let png = render_tile(p.model, &tile, c).encode_png();
+        let png = render_tile(p.model, &tile, c)?.encode_png();
         let _ = writeln!(
             h,
             "<figure><img alt=\"{n} view\" src=\"data:image/png;base64,{}\"><figcaption>{n}</figcaption></figure>",

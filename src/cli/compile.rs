@@ -6,7 +6,7 @@
 
 use super::{EXIT_IO_ERROR, check_outputs, inputs_of, or_report, print_stdout, report};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use reparamc::command::compile::{CompileOptions, Options, PlotFormat, compile};
+use reparamc::command::compile::{CompileOptions, CompileOutput, Options, PlotFormat, compile};
 use reparamc::command::pictures::Progress;
 use reparamc::front::source::SourceMap;
 use reparamc::output::write_atomic;
@@ -101,6 +101,56 @@ fn write(path: &Path, bytes: &[u8]) -> Result<(), ExitCode> {
     write_atomic(path, bytes).map_err(|e| io_error(path, e))
 }
 
+/// The report (the page or JSON), the plot and the gallery, where they were asked for.
+fn write_reports(args: &Args, made: &CompileOutput) -> Result<(), ExitCode> {
+    if let Some(r) = &args.report {
+        let text = made
+            .page
+            .clone()
+            .unwrap_or_else(|| made.compiled.report.to_json());
+        write(r, text.as_bytes())?;
+    }
+    let gallery = made.gallery.as_ref().map(|g| g.png.as_slice());
+    for (path, bytes) in [(&args.plot, made.plot.as_deref()), (&args.gallery, gallery)] {
+        if let (Some(p), Some(b)) = (path, bytes) {
+            write(p, b)?;
+        }
+    }
+    Ok(())
+}
+
+/// What the flags ask the library for; `output` is where the model goes (`-` for stdout).
+fn options_of(
+    args: &Args,
+    model_path: PathBuf,
+    output: &Path,
+    to_stdout: bool,
+    progress: Progress,
+) -> CompileOptions {
+    CompileOptions {
+        model: model_path,
+        variations: args.vary.clone(),
+        call: args.call.clone(),
+        options: Options {
+            all_constraints: args.all_constraints,
+            presets_name: (!to_stdout)
+                .then(|| {
+                    output
+                        .with_extension("json")
+                        .file_name()
+                        .map(|n| n.to_string_lossy().into_owned())
+                })
+                .flatten(),
+            distortion_curve: args.report.is_some(),
+        },
+        plot: args.plot.as_deref().map(PlotFormat::of_path),
+        gallery: args.gallery.is_some(),
+        page: args.report.as_deref().is_some_and(is_html),
+        progress,
+        diff_to: args.diff.then(|| output.display().to_string()),
+    }
+}
+
 pub fn run(args: Args) -> ExitCode {
     let Some(model_path) = args.model.clone() else {
         eprintln!(
@@ -139,28 +189,7 @@ pub fn run(args: Args) -> ExitCode {
         return ExitCode::from(2);
     }
     let (bar, progress) = progress_bar();
-    let options = CompileOptions {
-        model: model_path,
-        variations: args.vary.clone(),
-        call: args.call.clone(),
-        options: Options {
-            all_constraints: args.all_constraints,
-            presets_name: (!to_stdout)
-                .then(|| {
-                    output
-                        .with_extension("json")
-                        .file_name()
-                        .map(|n| n.to_string_lossy().into_owned())
-                })
-                .flatten(),
-            distortion_curve: args.report.is_some(),
-        },
-        plot: args.plot.as_deref().map(PlotFormat::of_path),
-        gallery: args.gallery.is_some(),
-        page: args.report.as_deref().is_some_and(is_html),
-        progress: progress.clone(),
-        diff_to: args.diff.then(|| output.display().to_string()),
-    };
+    let options = options_of(&args, model_path, &output, to_stdout, progress);
     let mut sources = SourceMap::new();
     let result = compile(&options, &mut sources);
     bar.finish_and_clear();
@@ -188,27 +217,8 @@ pub fn run(args: Args) -> ExitCode {
             return code;
         }
     }
-    if let Some(r) = &args.report {
-        let text = made
-            .page
-            .clone()
-            .unwrap_or_else(|| compiled.report.to_json());
-        if let Err(code) = write(r, text.as_bytes()) {
-            return code;
-        }
-    }
-    for (path, bytes) in [
-        (&args.plot, made.plot.as_deref()),
-        (
-            &args.gallery,
-            made.gallery.as_ref().map(|g| g.png.as_slice()),
-        ),
-    ] {
-        if let (Some(p), Some(b)) = (path, bytes)
-            && let Err(code) = write(p, b)
-        {
-            return code;
-        }
+    if let Err(code) = write_reports(&args, &made) {
+        return code;
     }
     if let Some(diff) = &made.diff
         && print_stdout(diff) != ExitCode::SUCCESS
