@@ -137,7 +137,7 @@ pub fn compile(options: &CompileOptions, sources: &mut SourceMap) -> DResult<Com
         }
         let mut job = options.options.clone();
         job.distortion_curve |= options.plot.is_some() || options.page;
-        tell("finding the relations the variations keep");
+        tell("choosing the relations to keep");
         let model = &evaluated.model;
         let compiled = reparameterize(sources, &loaded, model, &variations, &job);
         let pictures = pictures(options, model, &compiled, &mut tell)?;
