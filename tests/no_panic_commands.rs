@@ -87,7 +87,7 @@ fn main_job(which: usize, edits: &[Mutation]) {
     let options = CompileOptions {
         model: common::repo().join(MODEL),
         variations: vars,
-        plot: true,
+        plot: Some(reparamc::back::plot::PlotFormat::Svg),
         diff_to: Some("out.scad".into()),
         ..CompileOptions::default()
     };

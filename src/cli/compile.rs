@@ -5,11 +5,55 @@
 //! asked, diagnostics and a one-line summary on standard error.
 
 use super::{EXIT_IO_ERROR, check_outputs, inputs_of, or_report, print_stdout, report};
-use reparamc::command::compile::{CompileOptions, Options, compile};
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use reparamc::command::compile::{CompileOptions, CompileOutput, Options, PlotFormat, compile};
+use reparamc::command::pictures::Progress;
 use reparamc::front::source::SourceMap;
 use reparamc::output::write_atomic;
+use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+use std::sync::Arc;
+use std::time::Duration;
+
+/// How long the job runs before its progress bar shows.
+const QUIET_FOR: Duration = Duration::from_secs(1);
+
+/// Whether `path` names an HTML page.
+fn is_html(path: &Path) -> bool {
+    path.extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("html") || e.eq_ignore_ascii_case("htm"))
+}
+
+/// A bar over the job's stages on standard error, shown once the job has run for
+/// [`QUIET_FOR`] and never when standard error is not a terminal.
+fn progress_bar() -> (ProgressBar, Progress) {
+    let bar = ProgressBar::with_draw_target(None, ProgressDrawTarget::hidden());
+    if let Ok(style) =
+        ProgressStyle::with_template("{spinner} [{elapsed}] {bar:30} {pos}/{len} {msg}")
+    {
+        bar.set_style(style);
+    }
+    if std::io::stderr().is_terminal() {
+        let later = bar.clone();
+        std::thread::spawn(move || {
+            std::thread::sleep(QUIET_FOR);
+            if !later.is_finished() {
+                later.set_draw_target(ProgressDrawTarget::stderr());
+                later.enable_steady_tick(Duration::from_millis(120));
+            }
+        });
+    }
+    let told = bar.clone();
+    let progress = Progress(Some(Arc::new(
+        move |stage: usize, stages: usize, what: &str| {
+            told.set_length(stages as u64);
+            told.set_position(stage.saturating_sub(1) as u64);
+            told.set_message(what.to_string());
+        },
+    )));
+    (bar, progress)
+}
 
 #[derive(clap::Args, Debug, Default)]
 pub struct Args {
@@ -22,12 +66,18 @@ pub struct Args {
     /// A variation of the model: the same program with other numbers (repeatable).
     #[arg(long = "vary", value_name = "FILE")]
     pub vary: Vec<PathBuf>,
-    /// Write a machine-readable report (JSON) here.
+    /// Write the report here: a page to read in a browser when the name ends in `.html`,
+    /// else machine-readable JSON.
     #[arg(long, value_name = "FILE")]
     pub report: Option<PathBuf>,
-    /// Draw the distortion curve with the cutoff marked (PNG).
+    /// Draw the distortion curve with the cutoff marked (SVG when the name ends in `.svg`,
+    /// else PNG).
     #[arg(long, value_name = "FILE")]
     pub plot: Option<PathBuf>,
+    /// Draw the model at its defaults, at each preset and at an even blend, side by side
+    /// (PNG).
+    #[arg(long, value_name = "FILE")]
+    pub gallery: Option<PathBuf>,
     /// Without variations, keep every relation that holds (the paper's symbolic baseline)
     /// instead of the structural prior.
     #[arg(long)]
@@ -51,6 +101,56 @@ fn write(path: &Path, bytes: &[u8]) -> Result<(), ExitCode> {
     write_atomic(path, bytes).map_err(|e| io_error(path, e))
 }
 
+/// The report (the page or JSON), the plot and the gallery, where they were asked for.
+fn write_reports(args: &Args, made: &CompileOutput) -> Result<(), ExitCode> {
+    if let Some(r) = &args.report {
+        let text = made
+            .page
+            .clone()
+            .unwrap_or_else(|| made.compiled.report.to_json());
+        write(r, text.as_bytes())?;
+    }
+    let gallery = made.gallery.as_ref().map(|g| g.png.as_slice());
+    for (path, bytes) in [(&args.plot, made.plot.as_deref()), (&args.gallery, gallery)] {
+        if let (Some(p), Some(b)) = (path, bytes) {
+            write(p, b)?;
+        }
+    }
+    Ok(())
+}
+
+/// What the flags ask the library for; `output` is where the model goes (`-` for stdout).
+fn options_of(
+    args: &Args,
+    model_path: PathBuf,
+    output: &Path,
+    to_stdout: bool,
+    progress: Progress,
+) -> CompileOptions {
+    CompileOptions {
+        model: model_path,
+        variations: args.vary.clone(),
+        call: args.call.clone(),
+        options: Options {
+            all_constraints: args.all_constraints,
+            presets_name: (!to_stdout)
+                .then(|| {
+                    output
+                        .with_extension("json")
+                        .file_name()
+                        .map(|n| n.to_string_lossy().into_owned())
+                })
+                .flatten(),
+            distortion_curve: args.report.is_some(),
+        },
+        plot: args.plot.as_deref().map(PlotFormat::of_path),
+        gallery: args.gallery.is_some(),
+        page: args.report.as_deref().is_some_and(is_html),
+        progress,
+        diff_to: args.diff.then(|| output.display().to_string()),
+    }
+}
+
 pub fn run(args: Args) -> ExitCode {
     let Some(model_path) = args.model.clone() else {
         eprintln!(
@@ -70,7 +170,13 @@ pub fn run(args: Args) -> ExitCode {
     if !to_stdout {
         outputs.extend([output.as_path(), presets.as_path()]);
     }
-    outputs.extend(args.report.iter().chain(&args.plot).map(PathBuf::as_path));
+    outputs.extend(
+        args.report
+            .iter()
+            .chain(&args.plot)
+            .chain(&args.gallery)
+            .map(PathBuf::as_path),
+    );
     let mut inputs = vec![model_path.clone()];
     inputs.extend(args.vary.iter().cloned());
     if let Err(code) = check_outputs(&outputs, &inputs) {
@@ -82,27 +188,11 @@ pub fn run(args: Args) -> ExitCode {
         );
         return ExitCode::from(2);
     }
-    let options = CompileOptions {
-        model: model_path,
-        variations: args.vary.clone(),
-        call: args.call.clone(),
-        options: Options {
-            all_constraints: args.all_constraints,
-            presets_name: (!to_stdout)
-                .then(|| {
-                    output
-                        .with_extension("json")
-                        .file_name()
-                        .map(|n| n.to_string_lossy().into_owned())
-                })
-                .flatten(),
-            distortion_curve: args.report.is_some(),
-        },
-        plot: args.plot.is_some(),
-        diff_to: args.diff.then(|| output.display().to_string()),
-    };
+    let (bar, progress) = progress_bar();
+    let options = options_of(&args, model_path, &output, to_stdout, progress);
     let mut sources = SourceMap::new();
     let result = compile(&options, &mut sources);
+    bar.finish_and_clear();
     let made = match or_report(&sources, result) {
         Ok(made) => made,
         Err(code) => return code,
@@ -127,14 +217,7 @@ pub fn run(args: Args) -> ExitCode {
             return code;
         }
     }
-    if let Some(r) = &args.report
-        && let Err(code) = write(r, compiled.report.to_json().as_bytes())
-    {
-        return code;
-    }
-    if let (Some(p), Some(png)) = (&args.plot, &made.plot)
-        && let Err(code) = write(p, png)
-    {
+    if let Err(code) = write_reports(&args, &made) {
         return code;
     }
     if let Some(diff) = &made.diff

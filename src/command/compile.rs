@@ -7,6 +7,7 @@
 //! file with its presets. Each stage lives where its kind does (`analysis`, `back`); this
 //! file only composes them, and every decision is recorded in the [`Report`].
 
+use super::pictures::{Progress, pictures};
 use crate::analysis::anchors::project_variations;
 use crate::analysis::candidates::{Candidate, Candidates};
 use crate::analysis::classes::sigmoid;
@@ -24,8 +25,9 @@ use crate::analysis::reparam::{Solution, solve};
 use crate::analysis::similarity::VolumeSimilarity;
 use crate::back::diff::unified_diff;
 use crate::back::emit::{EmitPlan, emit};
+use crate::back::gallery::Gallery;
 use crate::back::plan::{PlanInputs, plan};
-use crate::back::plot::distortion_png;
+pub use crate::back::plot::PlotFormat;
 use crate::back::presets::presets_json;
 use crate::back::report::{ChosenRelation, FreeVariableReport, Report, VariationReport};
 use crate::front::diag::{DResult, Diagnostic};
@@ -59,8 +61,14 @@ pub struct CompileOptions {
     /// A module call to draw at the end of the model (and of each variant): `chair()`.
     pub call: Option<String>,
     pub options: Options,
-    /// Draw the distortion curve with the cutoff marked (PNG bytes in [`CompileOutput`]).
-    pub plot: bool,
+    /// Draw the distortion curve with the cutoff marked, in this format.
+    pub plot: Option<PlotFormat>,
+    /// Draw the presets gallery (PNG).
+    pub gallery: bool,
+    /// Write the report as an HTML page.
+    pub page: bool,
+    /// Told each stage as it starts.
+    pub progress: Progress,
     /// Make a unified diff from the model to the output, which will be written as this
     /// name (the diff's `+++` header; the `---` header is the model's path).
     pub diff_to: Option<String>,
@@ -77,6 +85,8 @@ pub struct Compiled {
     pub candidates: Candidates,
     pub kept: Vec<Candidate>,
     pub solution: Solution,
+    /// What the output file says (sliders, blends, switches).
+    pub plan: EmitPlan,
     /// Slot values of each variation projected onto the kept constraints and anchors.
     pub projected: Vec<Vec<f64>>,
 }
@@ -86,8 +96,12 @@ pub struct Compiled {
 #[derive(Debug)]
 pub struct CompileOutput {
     pub compiled: Compiled,
-    /// The distortion plot (PNG), when asked.
+    /// The distortion plot (PNG or SVG), when asked.
     pub plot: Option<Vec<u8>>,
+    /// The presets gallery, when asked.
+    pub gallery: Option<Gallery>,
+    /// The report as an HTML page, when asked.
+    pub page: Option<String>,
     /// The unified diff from the model to the output, when asked.
     pub diff: Option<String>,
     pub warnings: Vec<Diagnostic>,
@@ -99,10 +113,19 @@ pub struct CompileOutput {
 pub fn compile(options: &CompileOptions, sources: &mut SourceMap) -> DResult<CompileOutput> {
     with_large_stack(|| {
         let call = options.call.as_deref();
+        let extra = [options.plot.is_some(), options.gallery, options.page];
+        let stages = 2 + options.variations.len() + extra.iter().filter(|&&b| b).count();
+        let mut stage = 0;
+        let mut tell = |what: &str| {
+            stage += 1;
+            options.progress.tell(stage, stages, what);
+        };
+        tell("reading the model");
         let loaded = load_file_calling(sources, &options.model, call)?;
         let evaluated = evaluate(sources, &loaded)?;
         let mut variations = Vec::new();
         for v in &options.variations {
+            tell(&format!("reading {}", v.display()));
             let model = &evaluated.model;
             variations.push(load_variation_calling(
                 sources,
@@ -113,19 +136,20 @@ pub fn compile(options: &CompileOptions, sources: &mut SourceMap) -> DResult<Com
             )?);
         }
         let mut job = options.options.clone();
-        job.distortion_curve |= options.plot;
-        let compiled = reparameterize(sources, &loaded, &evaluated.model, &variations, &job);
-        let report = &compiled.report;
-        let plot = options
-            .plot
-            .then(|| distortion_png(&report.distortion_curve, report.keep_step()));
+        job.distortion_curve |= options.plot.is_some() || options.page;
+        tell("choosing the relations to keep");
+        let model = &evaluated.model;
+        let compiled = reparameterize(sources, &loaded, model, &variations, &job);
+        let pictures = pictures(options, model, &compiled, &mut tell)?;
         let diff = options.diff_to.as_ref().map(|to| {
             let from = options.model.display().to_string();
             unified_diff(sources.text(loaded.main), &compiled.scad, &from, to)
         });
         Ok(CompileOutput {
             compiled,
-            plot,
+            plot: pictures.plot,
+            gallery: pictures.gallery,
+            page: pictures.page,
             diff,
             warnings: evaluated.warnings,
         })
@@ -222,6 +246,7 @@ pub fn reparameterize(
         candidates,
         kept,
         solution,
+        plan,
         projected,
     }
 }

@@ -13,6 +13,7 @@
 pub mod compile;
 pub mod fit;
 pub mod inspect;
+pub mod pictures;
 pub mod render;
 
 use crate::front::diag::Diagnostic;
