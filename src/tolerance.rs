@@ -151,6 +151,12 @@ pub const SCALE_FLOOR: f64 = 1e-300;
 /// each one costs a slider. Also sets which relations pool into the noise estimate.
 pub const NOISE_FALSE_REJECTION: f64 = 1e-3;
 
+/// The largest noise the noise model admits, as a share of the model's size: variations
+/// are the same design give or take a few percent, not a different one. Where the only
+/// relations the variations move are broken ones, their residuals would otherwise pass for
+/// the noise.
+pub const NOISE_MAX_SHARE: f64 = 0.05;
+
 /// Volume lost by removing a part, as a fraction of the part's own volume in the input,
 /// below which a variation does without the part (it is hidden inside others or shrunk to
 /// nothing). Relative to the part, not the model, so a small part of a large model counts.

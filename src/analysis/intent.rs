@@ -27,7 +27,7 @@ use super::noise::{Evidence, NoiseModel};
 use super::pool::Pool;
 use super::project::{Faces, Projector};
 use crate::ir::{Affine, Model};
-use crate::tolerance::{RELATIVE_ROUNDOFF, Tolerance};
+use crate::tolerance::{NOISE_MAX_SHARE, RELATIVE_ROUNDOFF, Tolerance};
 
 /// The order the test took the candidates in, its statistics and its answer.
 #[derive(Debug, Clone)]
@@ -120,21 +120,27 @@ struct Scores {
     scored_at: Vec<usize>,
 }
 
-/// The variations' noise as the candidates' evidence at the variations themselves tells it
-/// (before any is taken), for what must be decided before the test runs (optional parts).
-pub fn estimate_noise(
-    faces: &Faces,
+/// The evidence that can tell the noise: a relation whose slots every variation leaves at
+/// the input's values (numbers no one changed, noised or not) is kept exactly whatever `σ`
+/// is, and pooling it would pull the estimate to the floor.
+fn informative(
     candidates: &Candidates,
     samples: &[Sample],
-    floor: f64,
-) -> NoiseModel {
-    let cx = context(faces, candidates, samples);
-    let mut chosen = Chosen::new(faces);
-    let mut points = start_points::<()>(faces, samples);
-    let evidence: Vec<Evidence> = (0..candidates.list.len())
-        .map(|c| cx.evidence(c, &mut points, &mut chosen))
+    evidence: &[Evidence],
+) -> Vec<Evidence> {
+    let Some(first) = samples.first() else {
+        return Vec::new();
+    };
+    let moved: Vec<bool> = (0..first.values.len())
+        .map(|s| samples.iter().any(|v| v.values[s] != first.values[s]))
         .collect();
-    NoiseModel::estimate(&evidence, floor)
+    candidates
+        .list
+        .iter()
+        .zip(evidence)
+        .filter(|(c, _)| c.rows.iter().any(|r| r.slots().any(|s| moved[s as usize])))
+        .map(|(_, e)| *e)
+        .collect()
 }
 
 /// Every variation at its own values, projected in the noise model's metric.
@@ -178,7 +184,8 @@ pub fn select<S: Similarity>(
     let all: Vec<Evidence> = (0..n)
         .map(|c| scores.evidence[c].unwrap_or(Evidence { cost: 0.0, dof: 0 }))
         .collect();
-    let noise = NoiseModel::estimate(&all, floor);
+    let ceiling = NOISE_MAX_SHARE * model.size();
+    let noise = NoiseModel::estimate(&informative(candidates, samples, &all), floor, ceiling);
     cx.prior = prior_log_odds(model, candidates, &all, &noise, cx.size);
     let mut out = Selection {
         order: Vec::new(),

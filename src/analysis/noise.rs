@@ -17,9 +17,11 @@
 //!
 //! `σ` is estimated from the variations themselves: the pooled variance of the relations
 //! whose statistic chance reaches in all but [`FALSE_REJECTION`] of intent ones (a
-//! one-sided test at [`INTENT_Z`]), iterated from a low start until that set stops changing. It never falls below `floor` (the model's
-//! float tolerance), so with exact variations exactly the relations some variation breaks
-//! are rejected.
+//! one-sided test at [`INTENT_Z`]), iterated from a low start until that set stops changing.
+//! It never falls below `floor` (the model's float tolerance), so with exact variations
+//! exactly the relations some variation breaks are rejected, nor rises above a ceiling (a
+//! share of the model's size, `tolerance::NOISE_MAX_SHARE`): variations of one design are
+//! not that far apart, and broken relations alone must not pass for the noise.
 
 use serde::Serialize;
 
@@ -107,9 +109,10 @@ impl NoiseModel {
     }
 
     /// The noise of the variations whose relations' evidence is `evidence`, never below
-    /// `floor` (see the module doc).
-    pub fn estimate(evidence: &[Evidence], floor: f64) -> NoiseModel {
+    /// `floor` nor above `ceiling` (see the module doc).
+    pub fn estimate(evidence: &[Evidence], floor: f64, ceiling: f64) -> NoiseModel {
         let floor = floor.max(f64::MIN_POSITIVE);
+        let ceiling = ceiling.max(floor);
         let seen: Vec<Evidence> = evidence.iter().copied().filter(|e| e.dof > 0).collect();
         let mut model = NoiseModel {
             sigma: floor,
@@ -131,7 +134,7 @@ impl NoiseModel {
         let mut variance = quantile(&per_dof, 0.25) / quartile_of_chi2.max(f64::MIN_POSITIVE);
         let mut accepted: Vec<bool> = Vec::new();
         for _ in 0..MAX_ROUNDS {
-            model.sigma = variance.sqrt().max(floor);
+            model.sigma = variance.sqrt().clamp(floor, ceiling);
             let now: Vec<bool> = seen.iter().map(|&e| model.explains(e)).collect();
             if now == accepted {
                 break;
@@ -225,7 +228,7 @@ mod tests {
             cost: (5.0 + 0.4 * i as f64).powi(2),
             dof: 3,
         }));
-        let m = NoiseModel::estimate(&e, 1e-6);
+        let m = NoiseModel::estimate(&e, 1e-6, 1e6);
         assert!((m.sigma - 0.7).abs() < 0.07, "{m:?}");
         let rejected_intent = e[..300].iter().filter(|&&x| !m.explains(x)).count();
         assert!(
@@ -243,7 +246,7 @@ mod tests {
             cost: 5.0 * (2.0 + 0.29 * i as f64).powi(2),
             dof: 5,
         }));
-        let m = NoiseModel::estimate(&e, 1e-6);
+        let m = NoiseModel::estimate(&e, 1e-6, 1e6);
         assert!((m.sigma - 0.3).abs() < 0.05, "{m:?}");
         assert!(e[60..].iter().all(|&x| !m.explains(x)));
     }
@@ -278,7 +281,7 @@ mod tests {
     fn exact_variations_reject_every_broken_relation() {
         let mut e = vec![Evidence { cost: 0.0, dof: 2 }; 50];
         e.push(Evidence { cost: 1e-8, dof: 2 });
-        let m = NoiseModel::estimate(&e, 1e-6);
+        let m = NoiseModel::estimate(&e, 1e-6, 1e6);
         assert_eq!(m.sigma, 1e-6);
         assert!(!m.explains(e[50]));
         assert!(m.explains(e[0]));

@@ -1,9 +1,9 @@
 //! Slider ranges for the free variables.
 //!
 //! Start from each free variable's extremes over the input and the projected variations,
-//! widen by a margin, then shrink by interval arithmetic until no setting in the box of
-//! ranges makes any size (an extent, a radius, a length) zero or negative, or separates two
-//! parts the variations keep in contact (`contacts`): every size and every contact side is
+//! widen by a margin, then shrink towards the input by interval arithmetic until no setting
+//! in the box of ranges makes any size (an extent, a radius, a length) zero or negative, or
+//! separates two parts the variations keep in contact (`contacts`): every size and every contact side is
 //! an affine function of the free variables, so its minimum over the box is exact
 //! (`c + Σ min(a·lo, a·hi)`). Steps are about a hundredth of a range, rounded to 1, 2 or
 //! 5 × 10^k, and divide the default value where they can.
@@ -97,7 +97,8 @@ struct Bound {
 
 /// Ranges for the free variables given their values at the input and at each variation.
 /// Every size stays above a fiftieth of its input value, and every contact side above
-/// `−slack` (`contacts`), at every setting in the box.
+/// `−slack` (`contacts`; or above its input value less `slack`, where the input shows a
+/// gap), at every setting in the box.
 pub fn ranges(
     model: &Model,
     sol: &Solution,
@@ -139,28 +140,31 @@ pub fn ranges(
     let touching: Vec<Bound> = contacts
         .iter()
         .map(|side| {
+            // Never further apart than the input has them (a contact seen through noise
+            // may show a small gap there).
             let (c, a) = in_free(&side.form, sol);
-            Bound { c, a, min: -slack }
+            let min = at(c, &a).min(0.0) - slack;
+            Bound { c, a, min }
         })
         .filter(moving)
         .collect();
-    // Sizes stay positive everywhere, presets included (they are clamped to the ranges).
+    // Sizes stay positive and contacts closed at every setting in the box, presets
+    // included (they are clamped to the ranges): the box shrinks towards the input, where
+    // all of them hold. A contact the variations keep only with settings of several
+    // sliders together (no kept relation says it) costs those sliders range, not the
+    // user a broken model.
     shrink(&sizes, input, input, &mut lo, &mut hi);
-    // Contacts give up the margin beyond the input and the variations, never a preset: a
-    // contact two variations keep only with other settings of other sliders is the kept
-    // relations' to hold, not the ranges'.
-    let (hull_lo, hull_hi) = hull(input, variations, &lo, &hi);
-    shrink(&touching, &hull_lo, &hull_hi, &mut lo, &mut hi);
+    shrink(&touching, input, input, &mut lo, &mut hi);
     (0..n)
         .map(|i| {
             let step = nice_step(hi[i] - lo[i], input[i]);
-            // Round inward to the step grid, never past what keeps sizes positive, but
-            // keep the input and every preset inside.
+            // Round inward to the step grid, never past what the bounds allow, but keep
+            // the input inside.
             let min = (lo[i] / step).ceil() * step;
             let max = (hi[i] / step).floor() * step;
             Range {
-                min: min.min(hull_lo[i]),
-                max: max.max(hull_hi[i]),
+                min: min.min(input[i]),
+                max: max.max(input[i]),
                 step,
             }
         })
@@ -172,19 +176,6 @@ fn box_min(b: &Bound, lo: &[f64], hi: &[f64]) -> f64 {
     b.c + (0..lo.len())
         .map(|i| (b.a[i] * lo[i]).min(b.a[i] * hi[i]))
         .sum::<f64>()
-}
-
-/// The box of the input and the variations, inside the box `[lo, hi]`.
-fn hull(input: &[f64], variations: &[Vec<f64>], lo: &[f64], hi: &[f64]) -> (Vec<f64>, Vec<f64>) {
-    let mut a = input.to_vec();
-    let mut b = input.to_vec();
-    for v in variations {
-        for i in 0..a.len() {
-            a[i] = a[i].min(v[i]).max(lo[i]);
-            b[i] = b[i].max(v[i]).min(hi[i]);
-        }
-    }
-    (a, b)
 }
 
 /// Shrinks the box `[lo, hi]` towards the box `[from_lo, from_hi]` inside it until every
