@@ -1,7 +1,8 @@
 //! Slider ranges for the free variables.
 //!
 //! Start from each free variable's extremes over the input and the projected variations,
-//! widen by a margin, then shrink by interval arithmetic until no setting in the box of
+//! widen by a margin (without variations: a quarter of the model's size for a position,
+//! half the value for a size), then shrink by interval arithmetic until no setting in the box of
 //! ranges makes any size (an extent, a radius, a length) zero or negative, or separates two
 //! parts the variations keep in contact (`contacts`): every size and every contact side is
 //! an affine function of the free variables, so its minimum over the box is exact
@@ -84,6 +85,10 @@ pub fn nice_step(span: f64, value: f64) -> f64 {
     step
 }
 
+/// Without variations, a position slider reaches this fraction of the model's size to
+/// either side of its value (a size reaches half its value).
+const POSITION_RANGE: f64 = 0.25;
+
 /// Passes over the bounds before the box is taken as settled (each pass meets every bound
 /// broken at its start; later bounds can break earlier ones again only by round-off).
 const MAX_SHRINK_PASSES: usize = 200;
@@ -115,10 +120,15 @@ pub fn ranges(
             hi[i] = hi[i].max(v[i]);
         }
     }
+    let size = model.size();
     for i in 0..n {
         let span = hi[i] - lo[i];
+        let position = model.slots[sol.free[i] as usize].position;
         let margin = if span > 0.0 {
             0.25 * span
+        } else if position && size > 0.0 {
+            // A place moves within the model's own scale, wherever its zero is.
+            POSITION_RANGE * size
         } else {
             0.5 * input[i].abs().max(1.0)
         };
