@@ -1,7 +1,7 @@
 //! Slider ranges for the free variables.
 //!
 //! Start from each free variable's extremes over the input and the projected variations,
-//! widen by a margin (without variations: a quarter of the model's size for a position,
+//! widen by a margin (without variations: a tenth of the model's size for a position,
 //! half the value for a size), then shrink by interval arithmetic until no setting in the box of
 //! ranges makes any size (an extent, a radius, a length) zero or negative, or separates two
 //! parts the variations keep in contact (`contacts`): every size and every contact side is
@@ -87,7 +87,7 @@ pub fn nice_step(span: f64, value: f64) -> f64 {
 
 /// Without variations, a position slider reaches this fraction of the model's size to
 /// either side of its value (a size reaches half its value).
-const POSITION_RANGE: f64 = 0.25;
+const POSITION_RANGE: f64 = 0.1;
 
 /// Passes over the bounds before the box is taken as settled (each pass meets every bound
 /// broken at its start; later bounds can break earlier ones again only by round-off).
@@ -120,21 +120,6 @@ pub fn ranges(
             hi[i] = hi[i].max(v[i]);
         }
     }
-    let size = model.size();
-    for i in 0..n {
-        let span = hi[i] - lo[i];
-        let position = model.slots[sol.free[i] as usize].position;
-        let margin = if span > 0.0 {
-            0.25 * span
-        } else if position && size > 0.0 {
-            // A place moves within the model's own scale, wherever its zero is.
-            POSITION_RANGE * size
-        } else {
-            0.5 * input[i].abs().max(1.0)
-        };
-        lo[i] -= margin;
-        hi[i] += margin;
-    }
     let at = |c: f64, a: &[f64]| c + a.iter().zip(input).map(|(x, y)| x * y).sum::<f64>();
     let moving = |b: &Bound| b.a.iter().any(|&x| x != 0.0);
     let sizes: Vec<Bound> = size_forms(model)
@@ -146,6 +131,22 @@ pub fn ranges(
         })
         .filter(moving)
         .collect();
+    let size = model.size();
+    for i in 0..n {
+        let span = hi[i] - lo[i];
+        // A number that sets no size only moves things: a position.
+        let position = sizes.iter().all(|b| b.a[i] == 0.0);
+        let margin = if span > 0.0 {
+            0.25 * span
+        } else if position && size > 0.0 {
+            // A place moves within the model's own scale, wherever its zero is.
+            POSITION_RANGE * size
+        } else {
+            0.5 * input[i].abs().max(1.0)
+        };
+        lo[i] -= margin;
+        hi[i] += margin;
+    }
     let touching: Vec<Bound> = contacts
         .iter()
         .map(|side| {
