@@ -222,16 +222,20 @@ fn slot_owners(model: &Model, labels: &[Label], by_slot: &[Vec<usize>]) -> Vec<S
                 .iter()
                 .any(|&p| without_counter(&model.parts[p].name) == without_counter(owner));
             let silent = says_nothing(owner, whole.as_deref());
+            // Where all its parts are (a literal a loop shares is no one part's).
+            let place = common_place(labels, parts);
             match parts.first() {
                 Some(&p)
                     if silent
                         || (own_part && says_nothing(&model.parts[p].name, whole.as_deref())) =>
                 {
-                    labels[p].words().join("_")
+                    let mut w = place.clone();
+                    w.push(labels[p].role.to_string());
+                    w.join("_")
                 }
                 Some(&p) if own_part => {
                     // The part's own name; where parts elsewhere share it, with the role
-                    // (if theirs differ) and the place of this one.
+                    // (if theirs differ) and the place of its parts.
                     let base = without_counter(owner);
                     let namesakes: Vec<usize> = (0..model.parts.len())
                         .filter(|&q| without_counter(&model.parts[q].name) == base)
@@ -239,7 +243,7 @@ fn slot_owners(model: &Model, labels: &[Label], by_slot: &[Vec<usize>]) -> Vec<S
                     let own: Vec<String> = words(owner).iter().map(|s| s.to_string()).collect();
                     let mut w: Vec<String> = Vec::new();
                     if namesakes.len() > 1 {
-                        w.extend(labels[p].place.iter().filter(|x| !own.contains(x)).cloned());
+                        w.extend(place.iter().filter(|x| !own.contains(x)).cloned());
                     }
                     w.extend(own.iter().cloned());
                     let role = labels[p].role.to_string();

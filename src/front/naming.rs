@@ -112,8 +112,8 @@ const FUNCTION_WORDS: &[&str] = &[
     "de", "del", "la", "el", "los", "las", "en", "con", "para", "por", "y", "di", "della", "dello",
     "dei", "delle", "il", "lo", "per", "e", "da", "do", "dos", "das", "du", "des", "le", "les",
     "et", "sur", "avec", "pour", // German, Dutch
-    "der", "die", "das", "den", "dem", "von", "vom", "mit", "und", "auf", "im", "zum", "zur", "fur",
-    "het", "van", "een", "op",
+    "der", "die", "das", "den", "dem", "von", "vom", "mit", "und", "auf", "im", "zum", "zur",
+    "fur", "het", "van", "een", "op",
 ];
 
 /// Articles a name may start with, which it drops.
