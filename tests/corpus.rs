@@ -195,3 +195,79 @@ fn machine_made_names_are_recognised() {
     let author: HashSet<String> = ["rear_axle_1_offset".to_string()].into();
     assert!(machine_made("rear_axle_1_offset", "X", &author).is_none());
 }
+
+/// The sliders of a model given as text: `(name, description, min, max)`.
+fn sliders_of(text: &str) -> Vec<(String, String, f64, f64)> {
+    let path = tempfile(Path::new("inline.scad"), "scad");
+    std::fs::write(&path, text).unwrap();
+    let mut sources = SourceMap::new();
+    let (loaded, evaluated) = match reparamc::load_model_parsed(&mut sources, &path) {
+        Ok(x) => x,
+        Err(d) => panic!("{}", d.render_plain(&sources)),
+    };
+    let compiled = reparameterize(
+        &sources,
+        &loaded,
+        &evaluated.model,
+        &[],
+        &Options::default(),
+    );
+    let _ = std::fs::remove_file(&path);
+    compiled
+        .report
+        .free_variables
+        .iter()
+        .map(|v| {
+            (
+                v.name.clone(),
+                v.description.clone(),
+                v.range.min,
+                v.range.max,
+            )
+        })
+        .collect()
+}
+
+#[test]
+fn cyrillic_comments_give_transliterated_names() {
+    let s = sliders_of(
+        "// сиденье\ncube([40, 40, 4]);\n// спинка\ntranslate([0, 36, 4]) cube([40, 4, 40]);\n",
+    );
+    let names: Vec<&str> = s.iter().map(|x| x.0.as_str()).collect();
+    assert!(names.iter().any(|n| n.starts_with("spinka")), "{names:?}");
+    assert!(names.iter().any(|n| n.starts_with("siden")), "{names:?}");
+}
+
+#[test]
+fn a_module_called_with_named_arguments_exposes_them() {
+    let s = sliders_of(
+        "module bench(width, depth, height, board) {\n\
+         for (x = [0, width - board]) translate([x, 0, 0]) cube([board, depth, height]);\n\
+         translate([0, 0, height]) cube([width, depth, board]);\n}\n\
+         bench(width = 120, depth = 40, height = 45, board = 3);\n",
+    );
+    let names: Vec<&str> = s.iter().map(|x| x.0.as_str()).collect();
+    assert!(!s.is_empty());
+    for n in &names {
+        let arg = n.strip_prefix("bench_").unwrap_or(n);
+        assert!(
+            ["width", "depth", "height", "board"].contains(&arg),
+            "`{n}` is not named after the argument it sets: {names:?}"
+        );
+    }
+}
+
+#[test]
+fn legs_under_a_top_are_named_legs_and_positions_span_the_model() {
+    let s = sliders_of(
+        "translate([0, 0, 0]) cube([5, 5, 70]);\ntranslate([95, 0, 0]) cube([5, 5, 70]);\n\
+         translate([0, 55, 0]) cube([5, 5, 70]);\ntranslate([95, 55, 0]) cube([5, 5, 70]);\n\
+         translate([0, 0, 70]) cube([100, 60, 4]);\n",
+    );
+    let names: Vec<&str> = s.iter().map(|x| x.0.as_str()).collect();
+    assert!(names.iter().any(|n| n.contains("leg")), "{names:?}");
+    assert!(names.iter().any(|n| n.contains("top")), "{names:?}");
+    for (n, _, lo, hi) in &s {
+        assert!(hi - lo > 1.0, "`{n}` moves only within [{lo}, {hi}]");
+    }
+}

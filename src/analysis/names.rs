@@ -229,8 +229,11 @@ fn slot_owners(model: &Model, labels: &[Label], by_slot: &[Vec<usize>]) -> Vec<S
                     if silent
                         || (own_part && says_nothing(&model.parts[p].name, whole.as_deref())) =>
                 {
+                    // A literal parts of different roles share is named by none of them.
                     let mut w = place.clone();
-                    w.push(labels[p].role.to_string());
+                    if parts.iter().all(|&q| labels[q].role == labels[p].role) {
+                        w.push(labels[p].role.to_string());
+                    }
                     w.join("_")
                 }
                 Some(&p) if own_part => {
@@ -297,6 +300,9 @@ struct Draft {
     role: String,
     /// Side and order words all the parts it moves share.
     place: Vec<String>,
+    /// The words of the owner its slot's name gives (the module, for an argument), to
+    /// try before order words.
+    source: Vec<String>,
     owners: Vec<String>,
 }
 
@@ -391,6 +397,10 @@ fn drafts(model: &Model, sol: &Solution) -> Vec<Draft> {
                 },
                 role: role.to_string(),
                 place: common_place(&labels, &parts),
+                source: words(split_name(&slot.name).0)
+                    .iter()
+                    .map(|w| w.to_string())
+                    .collect(),
                 owners,
             }
         })
@@ -410,8 +420,9 @@ pub fn name_free_variables(
     let mut names: Vec<Option<String>> = drafts.iter().map(|d| d.variable.clone()).collect();
     let kept: HashSet<String> = names.iter().flatten().cloned().collect();
     used.extend(kept.iter().cloned());
-    // Then plain names, places where two would be the same, order words last.
-    for stage in 0..3 {
+    // Then plain names, places where two would be the same, the owner's words where a
+    // name is the program's, order words last.
+    for stage in 0..4 {
         let wanted: Vec<Option<String>> = drafts
             .iter()
             .zip(&names)
@@ -419,6 +430,7 @@ pub fn name_free_variables(
                 n.is_none().then(|| match stage {
                     0 => d.name(false, None),
                     1 => d.name(true, None),
+                    2 => sanitize(&join_name(&d.source, &d.name(true, None))),
                     _ => String::new(),
                 })
             })
@@ -430,7 +442,7 @@ pub fn name_free_variables(
         let mut rank: HashMap<String, usize> = HashMap::new();
         for (i, w) in wanted.iter().enumerate() {
             let Some(w) = w else { continue };
-            if stage == 2 {
+            if stage == 3 {
                 let base = drafts[i].name(true, None);
                 let k = rank.entry(base).or_default();
                 let mut name = drafts[i].name(true, Some(*k));
