@@ -8,7 +8,7 @@
 mod common;
 
 use common::*;
-use reparamc::command::compile::{Options, reparameterize};
+use reparamc::command::compile::{Compiled, Options, reparameterize};
 use reparamc::front::source::SourceMap;
 use std::collections::HashSet;
 use std::path::{Path, PathBuf};
@@ -61,7 +61,9 @@ fn machine_made(name: &str, description: &str, author: &HashSet<String>) -> Opti
     None
 }
 
-fn run(model: &Path) -> Outcome {
+/// The main job on `model` with no variations: its results, the model's own text and how
+/// many numbers it has.
+fn compile(model: &Path) -> (Compiled, String, usize) {
     let mut sources = SourceMap::new();
     let (loaded, evaluated) = match reparamc::load_model_parsed(&mut sources, model) {
         Ok(x) => x,
@@ -74,6 +76,12 @@ fn run(model: &Path) -> Outcome {
         &[],
         &Options::default(),
     );
+    let text = sources.text(loaded.main).to_string();
+    (compiled, text, evaluated.model.slots.len())
+}
+
+fn run(model: &Path) -> Outcome {
+    let (compiled, text, numbers) = compile(model);
     let out = tempfile(model, "scad");
     std::fs::write(&out, &compiled.scad).unwrap();
     let mut problems = compare_parts(
@@ -81,7 +89,7 @@ fn run(model: &Path) -> Outcome {
         &csg_parts(&openscad_csg(model)),
     );
     let _ = std::fs::remove_file(&out);
-    let identifiers = source_identifiers(sources.text(loaded.main));
+    let identifiers = source_identifiers(&text);
     let sliders: Vec<(String, String)> = compiled
         .report
         .free_variables
@@ -91,7 +99,6 @@ fn run(model: &Path) -> Outcome {
     for (n, d) in &sliders {
         problems.extend(machine_made(n, d, &identifiers));
     }
-    let numbers = evaluated.model.slots.len();
     if numbers > 0 && sliders.is_empty() {
         problems.push(format!("{numbers} numbers and no slider"));
     }
@@ -200,18 +207,7 @@ fn machine_made_names_are_recognised() {
 fn sliders_of(text: &str) -> Vec<(String, String, f64, f64)> {
     let path = tempfile(Path::new("inline.scad"), "scad");
     std::fs::write(&path, text).unwrap();
-    let mut sources = SourceMap::new();
-    let (loaded, evaluated) = match reparamc::load_model_parsed(&mut sources, &path) {
-        Ok(x) => x,
-        Err(d) => panic!("{}", d.render_plain(&sources)),
-    };
-    let compiled = reparameterize(
-        &sources,
-        &loaded,
-        &evaluated.model,
-        &[],
-        &Options::default(),
-    );
+    let (compiled, _, _) = compile(&path);
     let _ = std::fs::remove_file(&path);
     compiled
         .report
