@@ -52,6 +52,14 @@ pub const ROTATION_SNAP: f64 = 1e-12;
 /// of steps (relative to one step): the round-off of the division, not a real shortfall.
 pub const RANGE_STEP_SLACK: f64 = 1e-9;
 
+// ---- names (analysis::names::roles) ------------------------------------------------------
+
+/// Two faces closer than this fraction of the model's size touch, and two centres this
+/// close are on one line, when parts' roles are read from their arrangement (a leg's top
+/// and the underside of the seat, a wheel's centre and its axle's axis). Coarse on
+/// purpose: models are drawn by hand with small gaps and overlaps.
+pub const ROLE_CONTACT: f64 = 0.02;
+
 // ---- geometry (geom: exact volumes, ray intervals, quadrature) --------------------------
 
 /// Interval ends along a ray or a line closer than this fraction of the solid's size (its

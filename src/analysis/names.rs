@@ -1,11 +1,18 @@
 //! Names and descriptions for the free variables.
 //!
-//! A free variable is named after what it moves. A top-level variable keeps its own name;
-//! otherwise the slot's role (`height`, `width`, `radius`, `x`) is prefixed with the words
-//! shared by the parts whose slot it drives unchanged (`left_front_leg.height`,
-//! `right_back_leg.height`, … → `leg_height`). Names never collide with an identifier of
-//! the program ([`identifiers`]), a keyword, or each other. Part switches are named alike
-//! ([`toggle_name`]): `show_` and the words their parts share.
+//! A free variable is named after what it moves, in the order the source is trusted: a
+//! kept variable of the author keeps its own name; otherwise the slot's role (`height`,
+//! `width`, `radius`, `x`, or the author's argument name) is prefixed with the words shared
+//! by what its slots belong to — the author's identifiers and comments
+//! (`front::naming`), or, where the source names nothing but the whole model, the part's
+//! role in the arrangement ([`roles`]): `left_front_leg.height`, `right_back_leg.height`,
+//! … → `leg_height`. Names that would be the same are told apart by the side and order
+//! words of their parts (`front_left_wheel_radius`), then by order words alone; never by a
+//! counter. Names never collide with an identifier of the program ([`identifiers`]), a
+//! keyword, or each other. Part switches are named alike ([`toggle_name`]): `show_` and
+//! the words their parts share.
+
+pub mod roles;
 
 use super::optional::Toggle;
 use super::reparam::Solution;
@@ -13,7 +20,8 @@ use crate::front::ast::{Expr, ExprKind, InstanceKind, Stmt, StmtKind};
 use crate::front::load::Loaded;
 use crate::front::walk::{Visitor, visit_stmts};
 use crate::ir::Model;
-use std::collections::HashSet;
+use roles::{Label, ordinal, part_labels};
+use std::collections::{HashMap, HashSet};
 
 /// A free variable's name and a one-line description for the Customizer.
 #[derive(Debug, Clone, PartialEq)]
@@ -144,22 +152,259 @@ fn capitalized(mut text: String) -> String {
     text
 }
 
-/// `name` as an OpenSCAD identifier (other characters become `_`).
+/// `name` as an OpenSCAD identifier: transliterated to ASCII (`спинка` → `spinka`), other
+/// characters become `_` (runs of them one), and it always has a letter and never starts
+/// with a digit.
 pub fn sanitize(name: &str) -> String {
-    let mut s: String = name
-        .chars()
-        .map(|c| {
-            if c.is_ascii_alphanumeric() || c == '_' {
-                c
-            } else {
-                '_'
+    let ascii = deunicode::deunicode(name);
+    let mut s = String::with_capacity(ascii.len());
+    for c in ascii.chars() {
+        let c = if c.is_ascii_alphanumeric() { c } else { '_' };
+        if !(c == '_' && s.ends_with('_')) {
+            s.push(c);
+        }
+    }
+    let s = s.trim_matches('_');
+    if !s.chars().any(|c| c.is_ascii_alphabetic()) {
+        return if s.is_empty() {
+            "value".into()
+        } else {
+            format!("value_{s}")
+        };
+    }
+    if s.starts_with(|c: char| c.is_ascii_digit()) {
+        format!("p_{s}")
+    } else {
+        s.to_string()
+    }
+}
+
+/// `name` without trailing repeat numbers (`height_2` → `height`, `Bed_01_2` → `Bed`,
+/// `part7` → `part`).
+fn without_counter(name: &str) -> &str {
+    let mut t = name;
+    loop {
+        let u = t
+            .trim_end_matches(|c: char| c.is_ascii_digit())
+            .trim_end_matches('_');
+        if u.len() == t.len() || u.is_empty() {
+            return t;
+        }
+        t = u;
+    }
+}
+
+/// Whether a part's name says nothing of the part: none, a position (`part7`), or a name
+/// every part of the model has (the model's own module).
+fn says_nothing(name: &str, whole: Option<&str>) -> bool {
+    let base = without_counter(name);
+    base.is_empty() || base == "part" || Some(base) == whole
+}
+
+/// The name every part has, when there are several parts and they all have it.
+fn whole_model_name(model: &Model) -> Option<String> {
+    let mut names = model.parts.iter().map(|p| without_counter(&p.name));
+    let first = names.next()?;
+    (model.parts.len() > 1 && names.all(|n| n == first)).then(|| first.to_string())
+}
+
+/// What each slot belongs to, as words: the owner its name gives, or the role and place of
+/// its first part where that owner says nothing.
+fn slot_owners(model: &Model, labels: &[Label], by_slot: &[Vec<usize>]) -> Vec<String> {
+    let whole = whole_model_name(model);
+    model
+        .slots
+        .iter()
+        .map(|slot| {
+            let (owner, _) = split_name(&slot.name);
+            let parts = &by_slot[slot.id as usize];
+            let own_part = parts
+                .iter()
+                .any(|&p| without_counter(&model.parts[p].name) == without_counter(owner));
+            let silent = says_nothing(owner, whole.as_deref());
+            // Where all its parts are (a literal a loop shares is no one part's).
+            let place = common_place(labels, parts);
+            match parts.first() {
+                Some(&p)
+                    if silent
+                        || (own_part && says_nothing(&model.parts[p].name, whole.as_deref())) =>
+                {
+                    // A literal parts of different roles share is named by none of them.
+                    let mut w = place.clone();
+                    if parts.iter().all(|&q| labels[q].role == labels[p].role) {
+                        w.push(labels[p].role.to_string());
+                    }
+                    w.join("_")
+                }
+                Some(&p) if own_part => {
+                    // The part's own name; where parts elsewhere share it, with the role
+                    // (if theirs differ) and the place of its parts.
+                    let base = without_counter(owner);
+                    let namesakes: Vec<usize> = (0..model.parts.len())
+                        .filter(|&q| without_counter(&model.parts[q].name) == base)
+                        .collect();
+                    let own: Vec<String> = words(owner).iter().map(|s| s.to_string()).collect();
+                    let mut w: Vec<String> = Vec::new();
+                    if namesakes.len() > 1 {
+                        w.extend(place.iter().filter(|x| !own.contains(x)).cloned());
+                    }
+                    w.extend(own.iter().cloned());
+                    let role = labels[p].role.to_string();
+                    if namesakes.iter().any(|&q| labels[q].role != labels[p].role)
+                        && !own.contains(&role)
+                    {
+                        w.push(role);
+                    }
+                    w.join("_")
+                }
+                _ => words(owner).join("_"),
             }
         })
-        .collect();
-    if s.is_empty() || s.starts_with(|c: char| c.is_ascii_digit()) {
-        s.insert_str(0, "p_");
+        .collect()
+}
+
+/// The place words every part in `parts` has (in the first part's order).
+fn common_place(labels: &[Label], parts: &[usize]) -> Vec<String> {
+    let Some(&first) = parts.first() else {
+        return Vec::new();
+    };
+    labels[first]
+        .place
+        .iter()
+        .filter(|w| parts.iter().all(|&p| labels[p].place.contains(w)))
+        .cloned()
+        .collect()
+}
+
+/// `prefix_role`, with a role that repeats the prefix's last word merged (`wheel` and
+/// `wheel_radius` → `wheel_radius`).
+fn join_name(prefix: &[String], role: &str) -> String {
+    let role_words: Vec<&str> = role.split('_').filter(|w| !w.is_empty()).collect();
+    let mut p: Vec<&str> = prefix.iter().map(String::as_str).collect();
+    while let (Some(l), Some(r)) = (p.last(), role_words.first()) {
+        if l.eq_ignore_ascii_case(r) {
+            p.pop();
+        } else {
+            break;
+        }
     }
-    s
+    p.extend(role_words);
+    p.join("_")
+}
+
+/// One free variable before names are made unique.
+struct Draft {
+    /// The author's variable, kept by name.
+    variable: Option<String>,
+    prefix: Vec<String>,
+    role: String,
+    /// Side and order words all the parts it moves share.
+    place: Vec<String>,
+    /// The words of the owner its slot's name gives (the module, for an argument), to
+    /// try before order words.
+    source: Vec<String>,
+    owners: Vec<String>,
+}
+
+impl Draft {
+    fn name(&self, with_place: bool, order: Option<usize>) -> String {
+        let mut prefix: Vec<String> = Vec::new();
+        if let Some(k) = order {
+            prefix.push(ordinal(k));
+        }
+        if with_place {
+            let have: Vec<&str> = self.prefix.iter().flat_map(|p| p.split('_')).collect();
+            prefix.extend(
+                self.place
+                    .iter()
+                    .filter(|w| !have.contains(&w.as_str()))
+                    .cloned(),
+            );
+        }
+        prefix.extend(self.prefix.iter().cloned());
+        sanitize(&join_name(&prefix, &self.role))
+    }
+
+    fn description(&self, name: &str) -> String {
+        let role = role_words(&self.role);
+        if let Some(v) = &self.variable {
+            return format!("{role} ({v} in the model)");
+        }
+        let what = name
+            .strip_suffix(&self.role)
+            .unwrap_or(name)
+            .trim_end_matches('_')
+            .replace('_', " ");
+        let n = self.owners.len();
+        if n > 1
+            && !common_words(&self.owners.iter().map(String::as_str).collect::<Vec<_>>()).is_empty()
+        {
+            format!("{role} of every {what} ({n} numbers)")
+        } else if n > 1 {
+            let mut distinct: Vec<String> =
+                self.owners.iter().map(|o| o.replace('_', " ")).collect();
+            distinct.dedup();
+            format!("{role} of the {} ({n} numbers)", list_words(&distinct))
+        } else if what.is_empty() {
+            role
+        } else {
+            format!("{role} of the {what}")
+        }
+    }
+}
+
+/// The first naming of each free variable: its kept variable, or owner words and role.
+fn drafts(model: &Model, sol: &Solution) -> Vec<Draft> {
+    let labels = part_labels(model);
+    let by_slot = model.parts_by_slot();
+    let owners_of = slot_owners(model, &labels, &by_slot);
+    sol.free
+        .iter()
+        .enumerate()
+        .map(|(i, &f)| {
+            let slot = &model.slots[f as usize];
+            let (_, role) = split_name(&slot.name);
+            let role = without_counter(role);
+            // Slots this variable sets unchanged.
+            let group: Vec<usize> = model
+                .slots
+                .iter()
+                .filter(|s| {
+                    let e = &sol.exprs[s.id as usize];
+                    e.constant == 0.0 && e.terms == [(i, 1.0)]
+                })
+                .map(|s| s.id as usize)
+                .collect();
+            let owners: Vec<String> = group.iter().map(|&s| owners_of[s].clone()).collect();
+            let same_role = group
+                .iter()
+                .all(|&s| without_counter(split_name(&model.slots[s].name).1) == role);
+            let role = if same_role || matches!(role, "x" | "y" | "z") {
+                role
+            } else {
+                "size"
+            };
+            let parts: Vec<usize> = group.iter().flat_map(|&s| by_slot[s].clone()).collect();
+            let owner_refs: Vec<&str> = owners.iter().map(String::as_str).collect();
+            let own = owners_of[f as usize].as_str();
+            let prefix = naming_words(&owner_refs, own);
+            Draft {
+                variable: slot.variable.clone(),
+                prefix: if prefix.is_empty() {
+                    Vec::new()
+                } else {
+                    vec![prefix]
+                },
+                role: role.to_string(),
+                place: common_place(&labels, &parts),
+                source: words(split_name(&slot.name).0)
+                    .iter()
+                    .map(|w| w.to_string())
+                    .collect(),
+                owners,
+            }
+        })
+        .collect()
 }
 
 /// Names for `sol.free`, avoiding every name in `taken`.
@@ -170,72 +415,59 @@ pub fn name_free_variables(
 ) -> Vec<VariableName> {
     let mut used: HashSet<String> = taken.clone();
     used.extend(KEYWORDS.iter().map(|s| s.to_string()));
-    sol.free
-        .iter()
-        .enumerate()
-        .map(|(i, &f)| {
-            let slot = &model.slots[f as usize];
-            let (owner, role) = split_name(&slot.name);
-            // Slots this variable sets unchanged.
-            let group: Vec<(&str, &str)> = model
-                .slots
-                .iter()
-                .filter(|s| {
-                    let e = &sol.exprs[s.id as usize];
-                    e.constant == 0.0 && e.terms == [(i, 1.0)]
+    let drafts = drafts(model, sol);
+    // Kept variables first: they are the author's own names.
+    let mut names: Vec<Option<String>> = drafts.iter().map(|d| d.variable.clone()).collect();
+    let kept: HashSet<String> = names.iter().flatten().cloned().collect();
+    used.extend(kept.iter().cloned());
+    // Then plain names, places where two would be the same, the owner's words where a
+    // name is the program's, order words last.
+    for stage in 0..4 {
+        let wanted: Vec<Option<String>> = drafts
+            .iter()
+            .zip(&names)
+            .map(|(d, n)| {
+                n.is_none().then(|| match stage {
+                    0 => d.name(false, None),
+                    1 => d.name(true, None),
+                    2 => sanitize(&join_name(&d.source, &d.name(true, None))),
+                    _ => String::new(),
                 })
-                .map(|s| split_name(&s.name))
-                .collect();
-            let owners: Vec<&str> = group.iter().map(|g| g.0).collect();
-            let same_role = group.iter().all(|g| g.1 == role);
-            let role = if same_role || matches!(role, "x" | "y" | "z") {
-                role
-            } else {
-                "size"
-            };
-            let (base, description) = match &slot.variable {
-                Some(v) => (
-                    v.clone(),
-                    format!("{} ({v} in the model)", role_words(role)),
-                ),
-                None => {
-                    let prefix = naming_words(&owners, owner);
-                    let what = if owners.len() > 1 && !common_words(&owners).is_empty() {
-                        format!(
-                            "of every {} ({} numbers)",
-                            prefix.replace('_', " "),
-                            owners.len()
-                        )
-                    } else if owners.len() > 1 {
-                        let mut distinct: Vec<String> =
-                            owners.iter().map(|o| words(o).join(" ")).collect();
-                        distinct.dedup();
-                        format!(
-                            "of the {} ({} numbers)",
-                            list_words(&distinct),
-                            owners.len()
-                        )
-                    } else {
-                        format!("of the {}", prefix.replace('_', " "))
-                    };
-                    let base = if prefix.is_empty() {
-                        role.to_string()
-                    } else {
-                        format!("{prefix}_{role}")
-                    };
-                    (base, format!("{} {what}", role_words(role)))
+            })
+            .collect();
+        let mut count: HashMap<&str, usize> = HashMap::new();
+        for w in wanted.iter().flatten() {
+            *count.entry(w.as_str()).or_default() += 1;
+        }
+        let mut rank: HashMap<String, usize> = HashMap::new();
+        for (i, w) in wanted.iter().enumerate() {
+            let Some(w) = w else { continue };
+            if stage == 3 {
+                let base = drafts[i].name(true, None);
+                let k = rank.entry(base).or_default();
+                let mut name = drafts[i].name(true, Some(*k));
+                while used.contains(&name) {
+                    *k += 1;
+                    name = drafts[i].name(true, Some(*k));
                 }
-            };
-            let mut name = sanitize(&base);
-            if used.contains(&name) && slot.variable.as_deref() != Some(name.as_str()) {
-                let mut k = 2;
-                while used.contains(&format!("{name}_{k}")) {
-                    k += 1;
-                }
-                name = format!("{name}_{k}");
+                *k += 1;
+                used.insert(name.clone());
+                names[i] = Some(name);
+            } else if count[w.as_str()] == 1 && !used.contains(w) {
+                used.insert(w.clone());
+                names[i] = Some(w.clone());
             }
-            used.insert(name.clone());
-            VariableName { name, description }
+        }
+    }
+    drafts
+        .iter()
+        .zip(names)
+        .map(|(d, n)| {
+            let name = n.unwrap_or_default();
+            VariableName {
+                description: d.description(&name),
+                name,
+            }
         })
         .collect()
 }
@@ -285,8 +517,8 @@ pub fn english_list(items: &[String]) -> String {
     }
 }
 
-/// A part switch's name (`show_` and the words its parts' names share, numbered past
-/// `taken`) and its description (the parts' names in words).
+/// A part switch's name (`show_` and the words its parts' names share, with order words
+/// past `taken`: `show_second_leg`) and its description (the parts' names in words).
 pub fn toggle_name(model: &Model, t: &Toggle, taken: &HashSet<String>) -> (String, String) {
     let names: Vec<&str> = t
         .parts
@@ -301,14 +533,14 @@ pub fn toggle_name(model: &Model, t: &Toggle, taken: &HashSet<String>) -> (Strin
         .map(str::to_string)
         .collect();
     let base = if common.is_empty() {
-        first.to_string()
+        without_counter(first).to_string()
     } else {
         common.join("_")
     };
-    let mut name = format!("show_{base}");
-    let mut k = 2;
+    let mut name = sanitize(&format!("show_{base}"));
+    let mut k = 1;
     while taken.contains(&name) {
-        name = format!("show_{base}_{k}");
+        name = sanitize(&format!("show_{}_{base}", ordinal(k)));
         k += 1;
     }
     let words: Vec<String> = names.iter().map(|n| n.replace('_', " ")).collect();

@@ -1,9 +1,11 @@
 //! Slider ranges for the free variables.
 //!
 //! Start from each free variable's extremes over the input and the projected variations,
-//! widen by a margin, then shrink towards the input by interval arithmetic until no setting
-//! in the box of ranges makes any size (an extent, a radius, a length) zero or negative, or
-//! separates two parts the variations keep in contact (`contacts`): every size and every contact side is
+//! widen by a margin (without variations: a tenth of the model's size for a position,
+//! half the value for a size), then shrink towards the input by interval arithmetic until
+//! no setting in the box of ranges makes any size (an extent, a radius, a length) zero or
+//! negative, or separates two parts the variations keep in contact (`contacts`): every size
+//! and every contact side is
 //! an affine function of the free variables, so its minimum over the box is exact
 //! (`c + Σ min(a·lo, a·hi)`). Steps are about a hundredth of a range, rounded to 1, 2 or
 //! 5 × 10^k, and divide the default value where they can.
@@ -84,6 +86,10 @@ pub fn nice_step(span: f64, value: f64) -> f64 {
     step
 }
 
+/// Without variations, a position slider reaches this fraction of the model's size to
+/// either side of its value (a size reaches half its value).
+const POSITION_RANGE: f64 = 0.1;
+
 /// Passes over the bounds before the box is taken as settled (each pass meets every bound
 /// broken at its start; later bounds can break earlier ones again only by round-off).
 const MAX_SHRINK_PASSES: usize = 200;
@@ -116,16 +122,6 @@ pub fn ranges(
             hi[i] = hi[i].max(v[i]);
         }
     }
-    for i in 0..n {
-        let span = hi[i] - lo[i];
-        let margin = if span > 0.0 {
-            0.25 * span
-        } else {
-            0.5 * input[i].abs().max(1.0)
-        };
-        lo[i] -= margin;
-        hi[i] += margin;
-    }
     let at = |c: f64, a: &[f64]| c + a.iter().zip(input).map(|(x, y)| x * y).sum::<f64>();
     let moving = |b: &Bound| b.a.iter().any(|&x| x != 0.0);
     let sizes: Vec<Bound> = size_forms(model)
@@ -137,6 +133,22 @@ pub fn ranges(
         })
         .filter(moving)
         .collect();
+    let size = model.size();
+    for i in 0..n {
+        let span = hi[i] - lo[i];
+        // A number that sets no size only moves things: a position.
+        let position = sizes.iter().all(|b| b.a[i] == 0.0);
+        let margin = if span > 0.0 {
+            0.25 * span
+        } else if position && size > 0.0 {
+            // A place moves within the model's own scale, wherever its zero is.
+            POSITION_RANGE * size
+        } else {
+            0.5 * input[i].abs().max(1.0)
+        };
+        lo[i] -= margin;
+        hi[i] += margin;
+    }
     let touching: Vec<Bound> = contacts
         .iter()
         .map(|side| {

@@ -65,6 +65,8 @@ pub struct Ctx<'a> {
     pub name: Option<String>,
     /// The innermost user module being instantiated.
     pub module: Option<String>,
+    /// The innermost `color("name")` around here.
+    pub color: Option<String>,
     pub children: Option<Rc<Children<'a>>>,
 }
 
@@ -77,15 +79,19 @@ impl Ctx<'_> {
             background: false,
             name: None,
             module: None,
+            color: None,
             children: None,
         }
     }
 
-    /// The name a part made here gets (empty: named by position later).
+    /// The name a part made here gets, in the order the source is trusted: the comment
+    /// naming a statement around it, the module making it, its colour (empty: named by
+    /// position later).
     pub fn part_name(&self) -> String {
         self.name
             .clone()
             .or_else(|| self.module.clone())
+            .or_else(|| self.color.clone())
             .unwrap_or_default()
     }
 }
@@ -106,6 +112,15 @@ impl Literals {
     }
 }
 
+/// What names a slot: the owner (if known yet), the role in its name, and the geometric
+/// role (`x`, `width`, `radius`, …) of its first use.
+#[derive(Debug, Clone)]
+pub struct SlotRole {
+    pub owner: Option<String>,
+    pub name: String,
+    pub geometric: String,
+}
+
 /// The state of one evaluation pass.
 pub struct Eval<'a> {
     sources: &'a SourceMap,
@@ -123,8 +138,8 @@ pub struct Eval<'a> {
     /// Expressions evaluated in this pass (see [`MAX_STEPS`]).
     steps: u64,
     used_scopes: HashMap<FileId, Rc<Scope>>,
-    /// Per slot: the name of what it belongs to (if known yet) and its role.
-    slot_roles: HashMap<SlotId, (Option<String>, String)>,
+    /// Per slot: what names it and what it sets.
+    slot_roles: HashMap<SlotId, SlotRole>,
     warnings: Vec<Diagnostic>,
     /// Where the latest non-finite number was made (a literal like `1e999`, or an
     /// operation on finite numbers like `0/0`), for the diagnostic when one reaches geometry.
@@ -171,19 +186,30 @@ impl Eval<'_> {
         }
     }
 
-    /// Records what the slots of `n` set, for naming them (first use wins).
+    /// Records what the slots of `n` set, for naming them (first use wins): the author's
+    /// identifiers for the literal if it has them, else the context naming it and `role`.
     fn name_slots(&mut self, n: &Num, role: &str, owner: Option<String>) {
         if let Some(a) = n.affine() {
             for s in a.slots() {
                 let span = self.lits.spans[s as usize];
-                let context = self
-                    .naming
-                    .literal_context(span)
-                    .map(str::to_string)
-                    .or_else(|| owner.clone().filter(|o| !o.is_empty()));
-                self.slot_roles
-                    .entry(s)
-                    .or_insert((context, role.to_string()));
+                let (context, name) = match self.naming.source_name(span) {
+                    Some(src) => (
+                        Some(src.owner.clone()).filter(|o| !o.is_empty()),
+                        src.role.clone().unwrap_or_else(|| role.to_string()),
+                    ),
+                    None => (
+                        self.naming
+                            .literal_context(span)
+                            .map(str::to_string)
+                            .or_else(|| owner.clone().filter(|o| !o.is_empty())),
+                        role.to_string(),
+                    ),
+                };
+                self.slot_roles.entry(s).or_insert(SlotRole {
+                    owner: context,
+                    name,
+                    geometric: role.to_string(),
+                });
             }
         }
     }
@@ -470,7 +496,7 @@ fn build_model(
     mut parts: Vec<Part>,
     background: Vec<Part>,
     csg: CsgNode,
-    roles: HashMap<SlotId, (Option<String>, String)>,
+    roles: HashMap<SlotId, SlotRole>,
 ) -> Model {
     let mut part_names: Vec<String> = parts
         .iter()
@@ -515,7 +541,9 @@ fn build_model(
             if let Some(v) = naming_variable(lits, s, sources, span) {
                 return v;
             }
-            let (owner, role) = roles.get(&s).cloned().unwrap_or((None, "value".into()));
+            let (owner, role) = roles.get(&s).map_or((None, "value".into()), |r| {
+                (r.owner.clone(), r.name.clone())
+            });
             let owner = owner.unwrap_or_else(|| part_names[first_part[&s]].clone());
             format!("{owner}.{role}")
         })
@@ -527,7 +555,7 @@ fn build_model(
         .enumerate()
         .map(|(i, (&s, name))| {
             let span = lits.spans[s as usize];
-            let role = roles.get(&s).map(|(_, r)| r.as_str()).unwrap_or("value");
+            let role = roles.get(&s).map_or("value", |r| r.geometric.as_str());
             Slot {
                 id: i as SlotId,
                 position: matches!(role, "x" | "y" | "z"),

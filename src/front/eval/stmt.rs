@@ -181,11 +181,15 @@ impl<'a> Eval<'a> {
         r
     }
 
-    /// The context with the statement's comment as the part name, if it has one.
+    /// The context with the statement's comment as the part name and its `color()` name,
+    /// if it has them.
     fn named_ctx(&self, stmt: &Stmt, ctx: &Ctx<'a>) -> Ctx<'a> {
         let mut ctx = ctx.clone();
         if let Some(name) = self.naming.statement_name(stmt.span) {
             ctx.name = Some(name);
+        }
+        if let Some(color) = self.naming.color_name(stmt.span) {
+            ctx.color = Some(color);
         }
         ctx
     }

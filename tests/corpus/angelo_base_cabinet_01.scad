@@ -1,0 +1,37 @@
+
+module Base_cabinet_01(){
+
+    color("#9e9e9e")
+    cube([2,4,3], center = true);              // Main Body
+
+    translate([0.15,0.0,1.6]){       
+        color("#c2c2c2")
+        cube([2.3,3.98,0.2], center = true);   // Upper part
+    }
+    translate([1.05,0.4,0]){                
+        color("#c2c2c2")
+        cube([0.1,0.15,2], center = true);    // Handle
+    }
+    translate([1.05,-0.4,0]){               
+        color("#c2c2c2")
+        cube([0.1,0.15,2], center = true);    // Handle
+    }
+    translate([1.005,0,0]){       
+        color("#000000")
+        cube([0.01,0.01,3], center = true);   // Black Line
+    }
+
+}
+
+Base_cabinet_01();
+
+
+// Written by Nicolì Angelo (Gengio) 2024: 
+// MIT License
+
+
+//Permission is hereby granted, free of charge, to any person obtaining a copy of this software and associated documentation files (the "Software"), to deal in the Software without restriction, including without limitation the rights to use, copy, modify, merge, publish, distribute, sublicense, and/or sell copies of the Software, and to permit persons to whom the Software is furnished to do so, subject to the following conditions:
+
+//The above copyright notice and this permission notice shall be included in all copies or substantial portions of the Software.
+
+//THE SOFTWARE IS PROVIDED "AS IS", WITHOUT WARRANTY OF ANY KIND, EXPRESS OR IMPLIED, INCLUDING BUT NOT LIMITED TO THE WARRANTIES OF MERCHANTABILITY, FITNESS FOR A PARTICULAR PURPOSE AND NONINFRINGEMENT. IN NO EVENT SHALL THE AUTHORS OR COPYRIGHT HOLDERS BE LIABLE FOR ANY CLAIM, DAMAGES OR OTHER LIABILITY, WHETHER IN AN ACTION OF CONTRACT, TORT OR OTHERWISE, ARISING FROM, OUT OF OR IN CONNECTION WITH THE SOFTWARE OR THE USE OR OTHER DEALINGS IN THE SOFTWARE.
