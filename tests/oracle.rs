@@ -130,7 +130,7 @@ fn affine_forms_predict_openscad_under_perturbation() {
                 let Some(actual) = part_features(&part_from_csg(part), f.part) else {
                     continue;
                 };
-                let Some(af) = actual.iter().find(|a| a.kind == f.kind) else {
+                let Some(af) = actual.iter().find(|a| a.kind == f.kind && a.role == f.role) else {
                     continue;
                 };
                 for (n, a) in f.nums.iter().zip(&af.nums) {

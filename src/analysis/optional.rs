@@ -8,8 +8,9 @@
 //! dropped when that is within one noise deviation `σ` of nothing (a present part's faces
 //! are rarely that close together by chance) and below half of what the input shows of it,
 //! or, for exact variations (`sigma` 0: typed files, where a part is left out by typing a
-//! zero), when it changes less than the float tolerance's share of the part's own volume
-//! and one of its extents is zero (a negative size that draws nothing is noise past zero). So a thin board whose numbers are noisy is still there. A part the
+//! zero or hidden inside others), when it changes less than the float tolerance's share of
+//! the part's own volume and none of its extents is negative (a negative size that draws
+//! nothing is noise past zero). So a thin board whose numbers are noisy is still there. A part the
 //! input does not show either (hidden inside others) is never optional: leaving it out
 //! changes no variation, so there is nothing to switch. Parts optional in exactly the same
 //! set of variations form one toggle (a Customizer checkbox, on by default).
@@ -49,14 +50,13 @@ fn box_at(part: &Part, x: &[f64]) -> (f64, f64) {
     (thinnest, area)
 }
 
-/// Whether the part has an extent of zero (within `eps`) at `x`: some size typed as 0. A
-/// part without affine world intervals counts as zero-sized where it draws nothing.
-fn zero_sized(part: &Part, x: &[f64], eps: f64) -> bool {
+/// Whether the part has a negative extent (beyond `eps`) at `x`: a size moved past zero.
+fn negative_sized(part: &Part, x: &[f64], eps: f64) -> bool {
     let Some(iv) = world_intervals(part) else {
-        return true;
+        return false;
     };
     let at = |n: &crate::ir::Num| n.affine().map_or(n.value, |a| a.eval(x));
-    iv.iter().any(|(lo, hi)| (at(hi) - at(lo)).abs() <= eps)
+    iv.iter().any(|(lo, hi)| at(hi) - at(lo) < -eps)
 }
 
 /// For each variation, the parts it does without, for variations whose faces carry noise
@@ -82,10 +82,12 @@ pub fn optional_parts<S: Similarity>(
                 .filter(|&p| {
                     let loss = sim.removal_loss(&whole, p);
                     if sigma <= 0.0 {
-                        // Exact variations: a part is left out by a zero, not by a size
-                        // that only happens to draw nothing (a negative radius is a number
-                        // the noise moved past zero, and the part is still meant).
-                        return loss < OPTIONAL_THRESHOLD && zero_sized(&model.parts[p], v, eps);
+                        // Exact variations: a part is left out by a zero or hidden inside
+                        // others, not by a size that only happens to draw nothing (a
+                        // negative radius is a number the noise moved past zero, and the
+                        // part is still meant).
+                        return loss < OPTIONAL_THRESHOLD
+                            && !negative_sized(&model.parts[p], v, eps);
                     }
                     if loss < OPTIONAL_THRESHOLD {
                         return true;

@@ -180,8 +180,12 @@ pub fn part_features(part: &Part, index: usize) -> Option<Vec<Feature>> {
         }
     };
     found.extend(extent_features(&iv, axial_axis(part)));
-    // The smaller cap's width, so a relation can say a cylinder's two radii are one.
-    if let Some((axis, lo, hi)) = smaller_cap(part).into_iter().next() {
+    // The smaller cap's width, so a relation can say a cylinder's two radii are one (only
+    // where it is affine already: freezing a cap's radius to make it so would take a
+    // number from the variations that change it).
+    if let Some((axis, lo, hi)) = smaller_cap(part).into_iter().next()
+        && hi.sub(&lo).affine().is_some()
+    {
         let top =
             matches!(&part.primitive, Primitive::Cylinder { r1, r2, .. } if r2.value <= r1.value);
         let role = if top { "top_width" } else { "bottom_width" };

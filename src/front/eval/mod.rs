@@ -388,12 +388,6 @@ impl Eval<'_> {
             if part.misaligned.is_some() {
                 continue;
             }
-            // Every number that reaches the geometry must be affine, whether or not a
-            // feature reads it (a cone's smaller radius bounds nothing, yet a slider moving
-            // it would not be a length): a factor or divisor is a ratio, never a dimension.
-            for n in part.numbers() {
-                asks.extend(n.freeze_to_make_affine().iter().copied());
-            }
             for f in crate::ir::feature::part_features(part, i).unwrap_or_default() {
                 for n in &f.nums {
                     asks.extend(n.freeze_to_make_affine().iter().copied());
