@@ -155,12 +155,16 @@ fn check_setting(
         Some(found.nums.iter().map(|n| n.value).collect())
     };
     for c in &compiled.kept {
-        let (Some(a), Some(b)) = (value(c.a), value(c.b)) else {
+        if c.feature_indices().any(|f| value(f).is_none()) {
             errs.push(format!("no feature for {}", cands.describe(c)));
             continue;
-        };
-        if a.iter().zip(&b).any(|(x, y)| (x - y).abs() > tol) {
-            errs.push(format!("{} fails: {a:?} vs {b:?}", cands.describe(c)));
+        }
+        let residuals = c.residuals(|f| value(f).unwrap_or_default());
+        if residuals.iter().any(|r| r.abs() > tol) {
+            errs.push(format!(
+                "{} fails: residuals {residuals:?}",
+                cands.describe(c)
+            ));
         }
     }
     for (i, p) in parts.iter().enumerate() {

@@ -24,6 +24,12 @@ pub enum RelationKind {
     /// A face plane (or another round part's side) touching a round part's curved side:
     /// not one of the paper's kinds, so not in its base constraint count.
     Tangent,
+    /// Two repeated parts placed as mirror images about the model's centre plane, or one
+    /// part centred on it (`placement`): not one of the paper's kinds.
+    Symmetric,
+    /// Three repeated parts in a row at equal gaps (`placement`): not one of the paper's
+    /// kinds.
+    Spaced,
 }
 
 impl RelationKind {
@@ -36,12 +42,14 @@ impl RelationKind {
     ];
 
     /// Every kind discovery knows.
-    pub const ALL: [RelationKind; 5] = [
+    pub const ALL: [RelationKind; 7] = [
         RelationKind::Coplanar,
         RelationKind::Coaxial,
         RelationKind::Coincident,
         RelationKind::Equal,
         RelationKind::Tangent,
+        RelationKind::Symmetric,
+        RelationKind::Spaced,
     ];
 
     pub fn name(self) -> &'static str {
@@ -51,6 +59,8 @@ impl RelationKind {
             RelationKind::Coincident => "coincident",
             RelationKind::Equal => "equal",
             RelationKind::Tangent => "tangent",
+            RelationKind::Symmetric => "symmetric",
+            RelationKind::Spaced => "spaced",
         }
     }
 
@@ -61,6 +71,8 @@ impl RelationKind {
             RelationKind::Coincident => "coincides with",
             RelationKind::Equal => "equals",
             RelationKind::Tangent => "is tangent to",
+            RelationKind::Symmetric => "mirrors",
+            RelationKind::Spaced => "is evenly spaced with",
         }
     }
 }
@@ -76,7 +88,9 @@ pub struct AffineFeature {
     pub values: Vec<f64>,
 }
 
-/// One relation between two features: `rows[i] = a_i − b_i = 0`.
+/// One relation between features: for the paper's kinds and tangency `rows[i] = a_i − b_i =
+/// 0`; a symmetric or spaced relation also speaks of the features in `more` (the centre
+/// plane's bounds, the middle of three), and its rows say how (`placement`).
 ///
 /// Features with identical affine forms (the legs of one module, the instances of a loop)
 /// form a class; a relation between two classes stands for every pair of their members,
@@ -88,6 +102,45 @@ pub struct Candidate {
     pub b: usize,
     pub rows: Vec<Affine>,
     pub multiplicity: usize,
+    /// Further features the rows speak of, beyond `a` and `b`.
+    pub more: Vec<usize>,
+}
+
+impl Candidate {
+    /// Every feature the relation speaks of: `a`, `b`, then `more`.
+    pub fn feature_indices(&self) -> impl Iterator<Item = usize> + '_ {
+        [self.a, self.b]
+            .into_iter()
+            .chain(self.more.iter().copied())
+    }
+
+    /// The relation's residuals given each feature's numbers (`value_of(feature index)`),
+    /// measured anywhere (a slider setting, another program's export): zero where it holds.
+    /// The same combination as `rows`, on values instead of forms.
+    pub fn residuals(&self, value_of: impl Fn(usize) -> Vec<f64>) -> Vec<f64> {
+        let (a, b) = (value_of(self.a), value_of(self.b));
+        let first = |f: usize| value_of(f).first().copied().unwrap_or(f64::NAN);
+        match self.kind {
+            RelationKind::Symmetric => {
+                let twice_centre = match self.more.as_slice() {
+                    [c] => 2.0 * first(*c),
+                    [lo, hi] => first(*lo) + first(*hi),
+                    _ => f64::NAN,
+                };
+                vec![a[0] + b[0] - twice_centre]
+            }
+            RelationKind::Spaced => {
+                let mid = self.more.first().map_or(f64::NAN, |&m| first(m));
+                vec![a[0] - 2.0 * mid + b[0]]
+            }
+            _ => a.iter().zip(&b).map(|(x, y)| x - y).collect(),
+        }
+    }
+
+    /// The parts the relation speaks of (with repeats).
+    pub fn parts<'a>(&'a self, features: &'a [AffineFeature]) -> impl Iterator<Item = usize> + 'a {
+        self.feature_indices().map(|f| features[f].part)
+    }
 }
 
 /// Every candidate of a model, with the features they speak of.
@@ -115,12 +168,23 @@ impl Candidates {
         } else {
             String::new()
         };
-        format!(
-            "{} {} {}{more}",
-            self.features[c.a].label,
-            c.kind.verb(),
-            self.features[c.b].label
-        )
+        let (a, b) = (&self.features[c.a].label, &self.features[c.b].label);
+        match c.kind {
+            RelationKind::Symmetric if c.a == c.b => {
+                format!("{a} is on the model's centre plane{more}")
+            }
+            RelationKind::Symmetric => {
+                format!("{a} mirrors {b} about the model's centre plane{more}")
+            }
+            RelationKind::Spaced => {
+                let mid = c
+                    .more
+                    .first()
+                    .map_or("", |&m| self.features[m].label.as_str());
+                format!("{a}, {mid} and {b} are evenly spaced{more}")
+            }
+            _ => format!("{a} {} {b}{more}", c.kind.verb()),
+        }
     }
 
     /// Candidates of one kind, counting every pair (the paper's count).
@@ -174,15 +238,17 @@ pub fn affine_features(model: &Model) -> Vec<AffineFeature> {
 }
 
 /// Which relation two features of this kind can have, and the group they must share (a
-/// round part's side shares the face planes' group: see [`pair_kind`]).
-fn relation_of(kind: FeatureKind) -> (RelationKind, u8) {
+/// round part's side shares the face planes' group: see [`pair_kind`]); `None` for a
+/// part's mid-planes, which are never paired (see `placement`).
+fn relation_of(kind: FeatureKind) -> Option<(RelationKind, u8)> {
     match kind {
         FeatureKind::Plane { axis, .. } | FeatureKind::Side { axis, .. } => {
-            (RelationKind::Coplanar, axis)
+            Some((RelationKind::Coplanar, axis))
         }
-        FeatureKind::AxisLine { axis } => (RelationKind::Coaxial, axis),
-        FeatureKind::Point { .. } => (RelationKind::Coincident, 0),
-        FeatureKind::Extent { .. } => (RelationKind::Equal, 0),
+        FeatureKind::AxisLine { axis } => Some((RelationKind::Coaxial, axis)),
+        FeatureKind::Point { .. } => Some((RelationKind::Coincident, 0)),
+        FeatureKind::Extent { .. } => Some((RelationKind::Equal, 0)),
+        FeatureKind::Centre { .. } => None,
     }
 }
 
@@ -210,7 +276,7 @@ pub const RUN_NEIGHBOURS: usize = 8;
 /// One feature per class of identical features (same relation group, same forms), with
 /// each class's size.
 fn feature_classes(model: &Model) -> (Vec<AffineFeature>, Vec<usize>) {
-    type Key = ((RelationKind, u8), bool, Vec<u64>);
+    type Key = (Option<(RelationKind, u8)>, bool, Vec<u64>);
     let mut class_of: std::collections::HashMap<Key, usize> = Default::default();
     let mut features: Vec<AffineFeature> = Vec::new();
     let mut class_sizes: Vec<usize> = Vec::new();
@@ -249,6 +315,7 @@ fn candidate(
         b,
         rows,
         multiplicity: class_sizes[a] * class_sizes[b],
+        more: Vec::new(),
     }
 }
 
@@ -268,7 +335,9 @@ pub fn find_candidates_for(model: &Model, variations: &[Vec<f64>]) -> Candidates
     let mut identical: std::collections::BTreeMap<RelationKind, usize> = Default::default();
     let mut groups: std::collections::BTreeMap<(RelationKind, u8), Vec<usize>> = Default::default();
     for (i, f) in features.iter().enumerate() {
-        let (kind, g) = relation_of(f.kind);
+        let Some((kind, g)) = relation_of(f.kind) else {
+            continue;
+        };
         let k = class_sizes[i];
         *identical.entry(pair_kind(kind, f, f)).or_insert(0) += k * (k - 1) / 2;
         groups.entry((kind, g)).or_default().push(i);
@@ -353,6 +422,12 @@ pub fn find_candidates_for(model: &Model, variations: &[Vec<f64>]) -> Candidates
             candidate(kind, &features, &class_sizes, a, b)
         }));
     }
+    list.extend(super::placement::placement_candidates(
+        model,
+        &features,
+        &class_sizes,
+        &tolerance,
+    ));
     list.sort_by_key(|c| (c.kind, c.a, c.b));
     identical.retain(|_, n| *n > 0);
     unlisted.retain(|_, n| *n > 0);

@@ -283,7 +283,7 @@ fn context<'a>(faces: &'a Faces, candidates: &'a Candidates, samples: &[Sample])
         .list
         .iter()
         .map(|c| {
-            let parts = [candidates.features[c.a].part, candidates.features[c.b].part];
+            let parts: Vec<usize> = c.parts(&candidates.features).collect();
             samples
                 .iter()
                 .map(|s| !parts.iter().any(|p| s.optional.contains(p)))

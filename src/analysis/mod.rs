@@ -1,6 +1,7 @@
 //! The analysis: which geometric relations hold on a model.
 //!
-//! `candidates` finds every relation of the paper's four kinds that holds on the input;
+//! `candidates` finds every relation of the paper's four kinds that holds on the input, with
+//! tangency and (`placement`) mirror symmetry and equal spacing;
 //! `optional` the parts a variation does without; `noise` states the variations' noise
 //! model, `classes` learns how often each class of relation is intent, and `intent` tests
 //! every relation against both, which chooses the relations the
@@ -26,6 +27,7 @@ pub mod linalg;
 pub mod names;
 pub mod noise;
 pub mod optional;
+pub mod placement;
 pub mod pool;
 pub mod prior;
 pub mod project;

@@ -4,7 +4,8 @@
 //! scaled box. Without variations we keep what holds a design together and drop accidents:
 //! coplanar faces, tangent sides and coincident points between parts that touch (their
 //! bounding boxes meet),
-//! every coaxiality, and equal extents along the same axis between repeated parts (same kind,
+//! every coaxiality, every mirror symmetry and equal spacing of repeated parts (`placement`),
+//! and equal extents along the same axis between repeated parts (same kind,
 //! same sizes: four legs). Equal sizes of unrelated parts, or of one part's own sides, go.
 
 use super::candidates::{Candidates, RelationKind};
@@ -44,7 +45,7 @@ pub fn structural_prior(model: &Model, c: &Candidates) -> Vec<usize> {
             let cand = &c.list[i];
             let (fa, fb) = (&c.features[cand.a], &c.features[cand.b]);
             match cand.kind {
-                RelationKind::Coaxial => true,
+                RelationKind::Coaxial | RelationKind::Symmetric | RelationKind::Spaced => true,
                 RelationKind::Coplanar | RelationKind::Coincident | RelationKind::Tangent => {
                     fa.part != fb.part && touching(model, fa.part, fb.part, &tol)
                 }

@@ -84,6 +84,9 @@ pub struct Inspection {
     /// Tangencies of round parts' sides: beyond the paper's kinds, not in its count.
     #[serde(skip_serializing_if = "is_zero")]
     pub tangent_count: usize,
+    /// Mirror symmetries and equal spacings of placements: beyond the paper's kinds too.
+    #[serde(skip_serializing_if = "is_zero")]
+    pub placement_count: usize,
     /// Pairs of features driven by the very same numbers (instances of one module or loop
     /// body): counted above, but they hold for every setting and are not listed.
     pub identical_by_construction: usize,
@@ -170,6 +173,8 @@ pub fn inspect(sources: &SourceMap, model: &Model, candidates: &Candidates) -> I
         parameter_count: model.slots.len(),
         base_constraint_count: candidates.total(),
         tangent_count: candidates.count(RelationKind::Tangent),
+        placement_count: candidates.count(RelationKind::Symmetric)
+            + candidates.count(RelationKind::Spaced),
         constraint_counts: RelationKind::PAPER
             .iter()
             .map(|&k| (k, candidates.count(k)))
@@ -310,7 +315,7 @@ impl Inspection {
         let _ = writeln!(
             out,
             "\nRelations that hold ({})",
-            self.base_constraint_count + self.tangent_count
+            self.base_constraint_count + self.tangent_count + self.placement_count
         );
         if self.identical_by_construction > 0 {
             let _ = writeln!(

@@ -10,7 +10,8 @@
 //! line, two end-cap centres and three extents (its bounding box); a sphere its centre and
 //! three extents. Beyond the paper, a round part also has the planes its curved side
 //! touches (four for a cylinder or cone, six for a sphere): the paper's four relation kinds
-//! cannot say that a board rests on an axle.
+//! cannot say that a board rests on an axle. Every part also has its three mid-planes
+//! (`Centre`), where its placement is: mirror symmetry and equal spacing speak of them.
 
 use super::num::{FreezeSide, Num};
 use super::part::{Part, Primitive};
@@ -37,6 +38,10 @@ pub enum FeatureKind {
     /// axis), on its low or high side: where a board resting on an axle or a wheel on the
     /// floor meets it. Not one of the paper's features.
     Side { axis: u8, high: bool },
+    /// The mid-plane of the part's world interval normal to `axis`: where its placement is,
+    /// which mirror symmetry and equal spacing speak of. Not one of the paper's features,
+    /// and never paired with another feature by the paper's four kinds.
+    Centre { axis: u8 },
 }
 
 /// One feature of one part, with its numbers.
@@ -180,6 +185,7 @@ pub fn part_features(part: &Part, index: usize) -> Option<Vec<Feature>> {
         }
     };
     found.extend(extent_features(&iv, axial_axis(part)));
+    found.extend(centre_features(&iv));
     // The smaller cap's width, so a relation can say a cylinder's two radii are one (only
     // where it is affine already: freezing a cap's radius to make it so would take a
     // number from the variations that change it).
@@ -308,6 +314,20 @@ fn side_planes(iv: &[(Num, Num); 3], axis: Option<usize>) -> Vec<Described> {
                     vec![n.clone()],
                 )
             })
+        })
+        .collect()
+}
+
+/// The mid-planes of the part's world intervals, one per axis (`x_centre`, …).
+fn centre_features(iv: &[(Num, Num); 3]) -> Vec<Described> {
+    (0..3)
+        .map(|a| {
+            let kind = FeatureKind::Centre { axis: a as u8 };
+            (
+                kind,
+                format!("{}_centre", AXIS_NAMES[a]),
+                vec![center(iv, a)],
+            )
         })
         .collect()
 }

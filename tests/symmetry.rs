@@ -1,0 +1,246 @@
+//! Mirror symmetry and equal spacing as relations the sliders keep, checked through
+//! OpenSCAD: random flat tables (a top on four inset legs, no comments, every number typed
+//! as a literal) and random rows of evenly spaced shelves are re-parameterized without
+//! variations; at random in-range slider settings, OpenSCAD's own export must still show
+//! the legs mirrored about the top's centre and the shelves at equal gaps, and a table
+//! needs at most eight sliders (issue 14's target for a plain four-legged table).
+
+mod common;
+
+use common::*;
+use reparamc::command::compile::{Compiled, Options, reparameterize};
+use reparamc::front::source::SourceMap;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+/// A tiny deterministic generator (xorshift), so every run draws the same models.
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> f64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    /// A number in `[lo, hi]` rounded to a tenth, as people type them.
+    fn typed(&mut self, lo: f64, hi: f64) -> f64 {
+        ((lo + self.next() * (hi - lo)) * 10.0).round() / 10.0
+    }
+}
+
+/// `x` as OpenSCAD text, without float noise.
+fn num(x: f64) -> String {
+    let s = format!("{:.3}", x);
+    s.trim_end_matches('0').trim_end_matches('.').to_string()
+}
+
+/// A top on four legs set in from its corners, at a random place; legs are boxes or
+/// cylinders. Part 0 is the top, parts 1–4 the legs (front left, front right, back left,
+/// back right).
+fn table(rng: &mut Rng) -> String {
+    let (w, d, t) = (
+        rng.typed(40.0, 120.0),
+        rng.typed(30.0, 80.0),
+        rng.typed(2.0, 6.0),
+    );
+    let (l, h) = (rng.typed(3.0, 8.0), rng.typed(30.0, 80.0));
+    let (ix, iy) = (rng.typed(1.0, 10.0), rng.typed(1.0, 10.0));
+    let (ox, oy) = (rng.typed(-50.0, 50.0), rng.typed(-50.0, 50.0));
+    let round = rng.next() < 0.4;
+    let mut s = format!(
+        "translate([{}, {}, {}]) cube([{}, {}, {}]);\n",
+        num(ox),
+        num(oy),
+        num(h),
+        num(w),
+        num(d),
+        num(t)
+    );
+    for y in [oy + iy, oy + d - iy - l] {
+        for x in [ox + ix, ox + w - ix - l] {
+            if round {
+                s += &format!(
+                    "translate([{}, {}, 0]) cylinder(h = {}, r = {});\n",
+                    num(x + l / 2.0),
+                    num(y + l / 2.0),
+                    num(h),
+                    num(l / 2.0)
+                );
+            } else {
+                s += &format!(
+                    "translate([{}, {}, 0]) cube([{}, {}, {}]);\n",
+                    num(x),
+                    num(y),
+                    num(l),
+                    num(l),
+                    num(h)
+                );
+            }
+        }
+    }
+    s
+}
+
+/// Two sides and a bottom with three to five evenly spaced shelves between the sides.
+/// Parts 0–2 are the carcass; the shelves follow, lowest first.
+fn shelves(rng: &mut Rng) -> (String, usize) {
+    let (w, d, gap, t) = (
+        rng.typed(40.0, 90.0),
+        rng.typed(20.0, 40.0),
+        rng.typed(15.0, 40.0),
+        rng.typed(1.5, 3.0),
+    );
+    let n = 3 + (rng.next() * 3.0) as usize;
+    let h = gap * (n as f64 + 1.0) + t;
+    let mut s = format!("cube([{}, {}, {}]);\n", num(t), num(d), num(h));
+    s += &format!(
+        "translate([{}, 0, 0]) cube([{}, {}, {}]);\n",
+        num(w - t),
+        num(t),
+        num(d),
+        num(h)
+    );
+    s += &format!(
+        "translate([{}, 0, 0]) cube([{}, {}, {}]);\n",
+        num(t),
+        num(w - 2.0 * t),
+        num(d),
+        num(t)
+    );
+    for k in 1..=n {
+        s += &format!(
+            "translate([{}, 0, {}]) cube([{}, {}, {}]);\n",
+            num(t),
+            num(k as f64 * gap),
+            num(w - 2.0 * t),
+            num(d),
+            num(t)
+        );
+    }
+    (s, n)
+}
+
+/// Writes `text` to a scratch file and compiles it without variations.
+fn compile(name: &str, text: &str) -> (PathBuf, Compiled) {
+    let dir = tempfile(&repo().join(format!("tests/{name}.scad")), "symmetry");
+    std::fs::create_dir_all(&dir).unwrap();
+    let input = dir.join(format!("{name}.scad"));
+    std::fs::write(&input, text).unwrap();
+    let mut sources = SourceMap::new();
+    let (loaded, evaluated) = match reparamc::load_model_parsed(&mut sources, &input) {
+        Ok(x) => x,
+        Err(d) => panic!("{}", d.render_plain(&sources)),
+    };
+    let options = Options {
+        all_constraints: false,
+        presets_name: None,
+        distortion_curve: false,
+    };
+    let compiled = reparameterize(&sources, &loaded, &evaluated.model, &[], &options);
+    let out = dir.join(format!("{name}_param.scad"));
+    std::fs::write(&out, &compiled.scad).unwrap();
+    (out, compiled)
+}
+
+/// The world centre of every part OpenSCAD exports for `model` at `defs`.
+fn centres(model: &Path, defs: &[String]) -> Vec<[f64; 3]> {
+    let csg = tempfile(model, "csg");
+    let args = defs.iter().flat_map(|d| ["-D".to_string(), d.clone()]);
+    let run = Command::new("openscad")
+        .args(args)
+        .arg("-o")
+        .arg(&csg)
+        .arg(model)
+        .output()
+        .expect("the `openscad` binary must be installed (see scripts/setup)");
+    assert!(
+        run.status.success(),
+        "openscad failed on {}: {}",
+        model.display(),
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let text = std::fs::read_to_string(&csg).unwrap();
+    let _ = std::fs::remove_file(&csg);
+    csg_parts(&text)
+        .iter()
+        .map(|p| {
+            let (lo, hi) = part_from_csg(p).world_bounds();
+            std::array::from_fn(|k| 0.5 * (lo[k] + hi[k]))
+        })
+        .collect()
+}
+
+/// `count` random in-range settings of the output's sliders, as `-D` definitions.
+fn settings(compiled: &Compiled, rng: &mut Rng, count: usize) -> Vec<Vec<String>> {
+    (0..count)
+        .map(|_| {
+            compiled
+                .report
+                .free_variables
+                .iter()
+                .map(|f| {
+                    let v = f.range.min + rng.next() * (f.range.max - f.range.min);
+                    format!("{}={v}", f.name)
+                })
+                .collect()
+        })
+        .collect()
+}
+
+#[test]
+fn table_legs_stay_mirrored_about_the_top_at_random_settings() {
+    let mut rng = Rng(0x5eed_7ab1e);
+    let mut failures = Vec::new();
+    for k in 0..6 {
+        let text = table(&mut rng);
+        let (out, compiled) = compile(&format!("table{k}"), &text);
+        let sliders = compiled.report.free_variables.len();
+        if sliders > 8 {
+            failures.push(format!("table {k}: {sliders} sliders (at most 8)\n{text}"));
+        }
+        for defs in settings(&compiled, &mut rng, 5) {
+            let c = centres(&out, &defs);
+            // OpenSCAD's export prints six significant digits.
+            let tol = 1e-4 * 200.0;
+            // Mirror pairs across x (same row) and across y (same column).
+            for (axis, pairs) in [(0, [(1, 2), (3, 4)]), (1, [(1, 3), (2, 4)])] {
+                for (a, b) in pairs {
+                    let off = c[a][axis] + c[b][axis] - 2.0 * c[0][axis];
+                    if off.abs() > tol {
+                        failures.push(format!(
+                            "table {k}, legs {a} and {b} off by {off} on axis {axis} at {}\n{text}",
+                            defs.join(" ")
+                        ));
+                    }
+                }
+            }
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+#[test]
+fn shelves_stay_evenly_spaced_at_random_settings() {
+    let mut rng = Rng(0x5e1f);
+    let mut failures = Vec::new();
+    for k in 0..4 {
+        let (text, n) = shelves(&mut rng);
+        let (out, compiled) = compile(&format!("shelves{k}"), &text);
+        for defs in settings(&compiled, &mut rng, 4) {
+            let c = centres(&out, &defs);
+            let z: Vec<f64> = (3..3 + n).map(|i| c[i][2]).collect();
+            for w in z.windows(3) {
+                let off = (w[1] - w[0]) - (w[2] - w[1]);
+                if off.abs() > 1e-4 * 400.0 {
+                    failures.push(format!(
+                        "shelves {k}: gaps differ by {off} at {}\n{text}",
+                        defs.join(" ")
+                    ));
+                }
+            }
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
