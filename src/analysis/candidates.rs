@@ -5,7 +5,9 @@
 //! normal axis, coaxial axis lines with the same direction, coincident key points, equal
 //! extents. The fifth, tangency, pairs a round part's side plane with a face plane or
 //! another round side normal to the same axis (a board on an axle, wheels on one floor); it
-//! is offered to discovery but not counted among the paper's base constraints. A candidate holds when each of its equations' residuals is within the model's
+//! is offered to discovery but not counted among the paper's base constraints; so are mirror
+//! symmetry and equal spacing of placements (`placement`), which speak of parts' mid-planes.
+//! A candidate holds when each of its equations' residuals is within the model's
 //! tolerance. Features are sorted by value and paired inside a sliding window, so the work is
 //! O(n log n + pairs), never all pairs. Every holding pair is counted, redundant or not: that
 //! count is the paper's "base constraints".

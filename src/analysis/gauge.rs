@@ -36,6 +36,7 @@ pub fn gauge_rows(model: &Model) -> Vec<Affine> {
             by_block.entry(blocks.find(s)).or_default().push(i);
         }
     }
+    let positions: Vec<bool> = model.slots.iter().map(|s| s.position).collect();
     let x0 = model.slot_values();
     let mut fixed: Vec<SlotId> = Vec::new();
     for members in by_block.values() {
@@ -47,7 +48,7 @@ pub fn gauge_rows(model: &Model) -> Vec<Affine> {
             continue;
         }
         let rows: Vec<&Affine> = members.iter().map(|&i| &forms[i]).collect();
-        fixed.extend(fix_null_space(&rows, &unknowns, &shaped));
+        fixed.extend(fix_null_space(&rows, &unknowns, &shaped, &positions));
     }
     // Slots no part depends on at all change nothing either.
     fixed.extend((0..slots as SlotId).filter(|&s| shaped[s as usize] == 0));
@@ -77,9 +78,16 @@ fn part_forms(model: &Model, slots: usize) -> (Vec<Affine>, Vec<bool>) {
 }
 
 /// The slots to hold so that no direction over `unknowns` leaves every row unchanged:
-/// a basis of that null space, then, slot by slot (most parts shaped first), a slot the
-/// basis still moves is held and the basis reduced by it.
-fn fix_null_space(rows: &[&Affine], unknowns: &[SlotId], shaped: &[usize]) -> Vec<SlotId> {
+/// a basis of that null space, then, slot by slot (positions first, then most parts shaped
+/// first), a slot the basis still moves is held and the basis reduced by it. A position
+/// goes first because a size, or a number that is both (`h` in `translate([0, 0, h - 4])`
+/// and `cube([w, d, h - 4])`), is what a user drags.
+fn fix_null_space(
+    rows: &[&Affine],
+    unknowns: &[SlotId],
+    shaped: &[usize],
+    positions: &[bool],
+) -> Vec<SlotId> {
     let k = unknowns.len();
     let col = |s: SlotId| unknowns.binary_search(&s).ok();
     let mut p = DMatrix::<f64>::zeros(rows.len(), k);
@@ -102,7 +110,14 @@ fn fix_null_space(rows: &[&Affine], unknowns: &[SlotId], shaped: &[usize]) -> Ve
         .map(|j| eigen.eigenvectors.column(j).iter().copied().collect())
         .collect();
     let mut order: Vec<usize> = (0..k).collect();
-    order.sort_by_key(|&j| (std::cmp::Reverse(shaped[unknowns[j] as usize]), unknowns[j]));
+    order.sort_by_key(|&j| {
+        let s = unknowns[j];
+        (
+            !positions[s as usize],
+            std::cmp::Reverse(shaped[s as usize]),
+            s,
+        )
+    });
     let mut fixed = Vec::new();
     for j in order {
         if basis.is_empty() {
