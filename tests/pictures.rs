@@ -8,19 +8,25 @@ use reparamc::back::gallery::{BLEND, DEFAULTS, LABEL_H, TILE_H, TILE_W, origin, 
 use reparamc::back::plot::{PlotFormat, X_LABEL, Y_LABEL, distortion_plot, escape};
 use reparamc::back::report::{ChosenRelation, Report};
 use reparamc::command::compile::{CompileOptions, CompileOutput, compile};
+use reparamc::command::pictures::Progress;
 use reparamc::front::source::SourceMap;
 use reparamc::render::image::Rgb;
 use std::path::{Path, PathBuf};
 use std::process::Command;
-use std::sync::OnceLock;
+use std::sync::{Arc, Mutex, OnceLock};
 
 const VARIATIONS: [&str; 3] = ["bench", "stool", "armchair"];
 
-/// The bundled chair with three variations, with every picture asked for (made once).
+/// What discovery told the chair's job of its steps: (relations decided, relations).
+static STEPS: Mutex<Vec<(usize, usize)>> = Mutex::new(Vec::new());
+
+/// The bundled chair with three variations, with every picture asked for (made once), its
+/// discovery's steps recorded in [`STEPS`].
 fn chair() -> &'static CompileOutput {
     static OUT: OnceLock<CompileOutput> = OnceLock::new();
     OUT.get_or_init(|| {
         let dir = common::repo().join("examples/variations/chair");
+        let record = |done, total| STEPS.lock().expect("steps").push((done, total));
         let options = CompileOptions {
             model: common::repo().join("examples/chair.scad"),
             variations: VARIATIONS
@@ -30,6 +36,10 @@ fn chair() -> &'static CompileOutput {
             plot: Some(PlotFormat::Png),
             gallery: true,
             page: true,
+            progress: Progress {
+                stage: None,
+                step: Some(Arc::new(record)),
+            },
             ..CompileOptions::default()
         };
         compile(&options, &mut SourceMap::new()).expect("the chair compiles")
@@ -211,6 +221,20 @@ fn report_page_shows_what_was_decided_and_links_nothing_outside() {
     assert!(page.contains("<svg"), "the plot is inline");
 }
 
+#[test]
+fn discovery_tells_its_steps_up_to_every_relation_decided() {
+    let n = chair().compiled.candidates.list.len();
+    let steps = STEPS.lock().expect("steps").clone();
+    assert!(steps.len() > 2, "{steps:?}");
+    assert!(steps.iter().all(|&(_, total)| total == n), "{steps:?}");
+    assert!(steps.windows(2).all(|w| w[0].0 <= w[1].0), "{steps:?}");
+    assert!(
+        steps[0].0 < n,
+        "the first call is before any step: {steps:?}"
+    );
+    assert_eq!(steps.last(), Some(&(n, n)));
+}
+
 /// Debian's Chromium, headless, with the flags this closed network needs and a fresh
 /// profile in `dir`.
 fn chromium(dir: &Path) -> Command {
@@ -362,11 +386,16 @@ fn a_long_job_shows_its_progress_on_a_terminal() {
         String::from_utf8_lossy(&run.stderr)
     );
     let tty = String::from_utf8_lossy(&run.stdout);
-    // The bar shows once the job has run a second (under `cargo test` it runs about three).
-    let shown = tty.contains("writing the report page");
+    // The bar shows once the job has run a second (under `cargo test` it runs about three):
+    // discovery's steps, of every candidate relation, with the stage beside them.
+    let steps = format!(
+        "/{} relations decided",
+        chair().compiled.candidates.list.len()
+    );
+    let shown = tty.contains(&steps) && tty.contains("writing the report page");
     assert!(
         shown || took.as_secs_f64() < 1.5,
-        "no progress bar in {took:?}: {tty:?}"
+        "no progress bar over discovery's steps ({steps}) in {took:?}: {tty:?}"
     );
     assert!(tty.contains("sliders drive"), "no summary line: {tty:?}");
     let _ = std::fs::remove_dir_all(&dir);

@@ -159,13 +159,16 @@ fn start_points<'a, R>(faces: &Faces, samples: &'a [Sample]) -> Vec<Point<'a, R>
 
 /// Runs the test to the end (every candidate taken or implied). With `sim`, the distortion
 /// curve is measured along the way (exact IoU after every step, most of the time taken);
-/// the decisions do not depend on it.
+/// the decisions do not depend on it. `step` is told, before the first step and after each,
+/// how many candidates are decided (taken or implied) of how many there are; the last call
+/// is `(n, n)`.
 pub fn select<S: Similarity>(
     model: &Model,
     faces: &Faces,
     candidates: &Candidates,
     samples: &[Sample],
     sim: Option<&S>,
+    step: &mut dyn FnMut(usize, usize),
 ) -> Selection {
     let n = candidates.list.len();
     let floor = Tolerance::for_size(model.size()).epsilon;
@@ -174,13 +177,7 @@ pub fn select<S: Similarity>(
     let mut chosen = Chosen::new(faces);
     let mut pool = Pool::new(&vec![0; n], |i| !chosen.implies(&rows_of(candidates, i)));
     let mut points = start_points::<S::Reference>(faces, samples);
-    let mut scores = Scores {
-        evidence: vec![None; n],
-        scored_at: vec![0; n],
-    };
-    for c in (0..n).filter(|&c| pool.is_alive(c)) {
-        scores.evidence[c] = Some(cx.evidence(c, &mut points, &mut chosen));
-    }
+    let mut scores = first_scores(&cx, &pool, &mut points, &mut chosen);
     let all: Vec<Evidence> = (0..n)
         .map(|c| scores.evidence[c].unwrap_or(Evidence { cost: 0.0, dof: 0 }))
         .collect();
@@ -201,8 +198,9 @@ pub fn select<S: Similarity>(
     let mut exact: Vec<bool> = (0..n)
         .map(|c| pool.is_alive(c) && cx.exact(c, &points))
         .collect();
+    step(n - pool.alive_count(), n);
     while pool.lowest_tier().is_some() && !samples.is_empty() {
-        let step = out.order.len() + 1;
+        let at = out.order.len() + 1;
         let mut gone = Vec::new();
         let batch: Vec<usize> = (0..n).filter(|&c| pool.is_alive(c) && exact[c]).collect();
         if !batch.is_empty() {
@@ -226,7 +224,7 @@ pub fn select<S: Similarity>(
                 &mut points,
                 &mut chosen,
                 &mut scores,
-                step,
+                at,
             ) else {
                 break;
             };
@@ -257,9 +255,29 @@ pub fn select<S: Similarity>(
         if let Some(last) = out.implied.last_mut() {
             last.extend(gone);
         }
+        step(n - pool.alive_count(), n);
     }
+    step(n, n);
     out.accepted = cut.unwrap_or(out.order.len());
     out
+}
+
+/// Every candidate's evidence at the variations' own values (none for those out of play).
+fn first_scores<R>(
+    cx: &Context<'_>,
+    pool: &Pool,
+    points: &mut [Point<'_, R>],
+    chosen: &mut Chosen,
+) -> Scores {
+    let n = cx.candidates.list.len();
+    let mut scores = Scores {
+        evidence: vec![None; n],
+        scored_at: vec![0; n],
+    };
+    for c in (0..n).filter(|&c| pool.is_alive(c)) {
+        scores.evidence[c] = Some(cx.evidence(c, points, chosen));
+    }
+    scores
 }
 
 impl Selection {
@@ -406,3 +424,4 @@ fn largest_residual(cx: &Context<'_>, c: usize, samples: &[Sample]) -> f64 {
         })
         .fold(0.0, f64::max)
 }
+

@@ -25,13 +25,20 @@ fn is_html(path: &Path) -> bool {
         .is_some_and(|e| e.eq_ignore_ascii_case("html") || e.eq_ignore_ascii_case("htm"))
 }
 
-/// A bar over the job's stages on standard error, shown once the job has run for
-/// [`QUIET_FOR`] and never when standard error is not a terminal.
+/// What the bar shows before discovery: a spinner and the stage (cut to the terminal's width).
+const STAGE_TEMPLATE: &str = "{spinner} [{elapsed}] {wide_msg}";
+
+/// What it shows from discovery's first step on: the candidate relations decided, of all,
+/// and the stage (on one line of 80 columns for the stages after discovery).
+const STEP_TEMPLATE: &str =
+    "{spinner} [{elapsed}] {bar:16} {pos}/{len} relations decided · {wide_msg}";
+
+/// One bar over discovery's steps on standard error (a spinner with the stage before them),
+/// shown once the job has run for [`QUIET_FOR`] and never when standard error is not a
+/// terminal.
 fn progress_bar() -> (ProgressBar, Progress) {
     let bar = ProgressBar::with_draw_target(None, ProgressDrawTarget::hidden());
-    if let Ok(style) =
-        ProgressStyle::with_template("{spinner} [{elapsed}] {bar:30} {pos}/{len} {msg}")
-    {
+    if let Ok(style) = ProgressStyle::with_template(STAGE_TEMPLATE) {
         bar.set_style(style);
     }
     if std::io::stderr().is_terminal() {
@@ -45,13 +52,21 @@ fn progress_bar() -> (ProgressBar, Progress) {
         });
     }
     let told = bar.clone();
-    let progress = Progress(Some(Arc::new(
-        move |stage: usize, stages: usize, what: &str| {
-            told.set_length(stages as u64);
-            told.set_position(stage.saturating_sub(1) as u64);
+    let stepped = bar.clone();
+    let progress = Progress {
+        stage: Some(Arc::new(move |_, _, what: &str| {
             told.set_message(what.to_string());
-        },
-    )));
+        })),
+        step: Some(Arc::new(move |done: usize, total: usize| {
+            if stepped.length().is_none()
+                && let Ok(style) = ProgressStyle::with_template(STEP_TEMPLATE)
+            {
+                stepped.set_style(style);
+            }
+            stepped.set_length(total as u64);
+            stepped.set_position(done as u64);
+        })),
+    };
     (bar, progress)
 }
 
