@@ -16,8 +16,20 @@ use std::process::ExitCode;
 use std::sync::Arc;
 use std::time::Duration;
 
-/// How long the job runs before its progress bar shows.
+/// How long the job runs before its progress bar shows, unless [`QUIET_FOR_VAR`] says.
 const QUIET_FOR: Duration = Duration::from_secs(1);
+
+/// The environment variable that sets [`QUIET_FOR`] in seconds (0: at once; tests use it).
+const QUIET_FOR_VAR: &str = "REPARAMC_PROGRESS_AFTER";
+
+/// How long the job runs before its progress bar shows.
+fn quiet_for() -> Duration {
+    std::env::var(QUIET_FOR_VAR)
+        .ok()
+        .and_then(|s| s.trim().parse::<f64>().ok())
+        .and_then(|s| Duration::try_from_secs_f64(s).ok())
+        .unwrap_or(QUIET_FOR)
+}
 
 /// Whether `path` names an HTML page.
 fn is_html(path: &Path) -> bool {
@@ -34,7 +46,7 @@ const STEP_TEMPLATE: &str =
     "{spinner} [{elapsed}] {bar:16} {pos}/{len} relations decided · {wide_msg}";
 
 /// One bar over discovery's steps on standard error (a spinner with the stage before them),
-/// shown once the job has run for [`QUIET_FOR`] and never when standard error is not a
+/// shown once the job has run for [`quiet_for`] and never when standard error is not a
 /// terminal.
 fn progress_bar() -> (ProgressBar, Progress) {
     let bar = ProgressBar::with_draw_target(None, ProgressDrawTarget::hidden());
@@ -43,8 +55,9 @@ fn progress_bar() -> (ProgressBar, Progress) {
     }
     if std::io::stderr().is_terminal() {
         let later = bar.clone();
+        let quiet = quiet_for();
         std::thread::spawn(move || {
-            std::thread::sleep(QUIET_FOR);
+            std::thread::sleep(quiet);
             if !later.is_finished() {
                 later.set_draw_target(ProgressDrawTarget::stderr());
                 later.enable_steady_tick(Duration::from_millis(120));
