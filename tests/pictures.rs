@@ -238,6 +238,23 @@ fn discovery_tells_its_steps_up_to_every_relation_decided() {
     assert_eq!(steps.last(), Some(&(n, n)));
 }
 
+#[test]
+fn the_cutoff_of_exact_variations_says_so_instead_of_a_zero_sigma() {
+    // The chair's variations are typed files: exact, so the noise sits at its floor.
+    let report = &chair().compiled.report;
+    let noise = report.noise.expect("a noise model");
+    assert!(noise.exact(), "{noise:?}");
+    let reason = &report.cutoff.as_ref().expect("a cutoff").reason;
+    assert!(reason.contains("(exact variations, no noise)"), "{reason}");
+    assert!(
+        !reason.contains("σ =") && !reason.contains("odds"),
+        "{reason}"
+    );
+    let page = chair().page.as_ref().expect("a page");
+    assert!(page.contains("The variations are exact (no noise)"));
+    assert!(!page.contains("σ = 0.000"));
+}
+
 /// Debian's Chromium, headless, with the flags this closed network needs and a fresh
 /// profile in `dir`.
 fn chromium(dir: &Path) -> Command {

@@ -361,25 +361,11 @@ fn by_discovery(
 /// The cutoff the test made, with the paper's change points on the same curve beside it.
 fn test_cutoff(candidates: &Candidates, sel: &Selection) -> Cutoff {
     let (paper, published) = change_points(&sel.curve);
-    let keep = sel.accepted;
-    let sigma = sel.noise.sigma;
-    let reason = match sel.order.get(keep) {
-        None => format!(
-            "every relation is more likely intent than not under the variations' noise (σ = {sigma:.3} world units)"
-        ),
-        Some(&c) => format!(
-            "relation {} ({}) is more likely broken than intent (odds {:.3} to 1, its residuals {:.1} noise deviations off; noise σ = {sigma:.3} world units)",
-            keep + 1,
-            candidates.describe(&candidates.list[c]),
-            sel.log_odds[keep].exp(),
-            sel.z[keep],
-        ),
-    };
     Cutoff {
-        keep,
+        keep: sel.accepted,
         paper,
         published,
-        reason,
+        reason: sel.cutoff_reason(&|c| candidates.describe(&candidates.list[c])),
     }
 }
 
