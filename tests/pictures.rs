@@ -8,19 +8,28 @@ use reparamc::back::gallery::{BLEND, DEFAULTS, LABEL_H, TILE_H, TILE_W, origin, 
 use reparamc::back::plot::{PlotFormat, X_LABEL, Y_LABEL, distortion_plot, escape};
 use reparamc::back::report::{ChosenRelation, Report};
 use reparamc::command::compile::{CompileOptions, CompileOutput, compile};
+use reparamc::command::pictures::Progress;
 use reparamc::front::source::SourceMap;
 use reparamc::render::image::Rgb;
 use std::path::{Path, PathBuf};
 use std::process::Command;
-use std::sync::OnceLock;
+use std::sync::{Arc, Mutex, OnceLock};
 
 const VARIATIONS: [&str; 3] = ["bench", "stool", "armchair"];
 
-/// The bundled chair with three variations, with every picture asked for (made once).
+/// The environment variable that sets how long the main job runs before its bar shows.
+const QUIET_FOR_VAR: &str = "REPARAMC_PROGRESS_AFTER";
+
+/// What discovery told the chair's job of its steps: (relations decided, relations).
+static STEPS: Mutex<Vec<(usize, usize)>> = Mutex::new(Vec::new());
+
+/// The bundled chair with three variations, with every picture asked for (made once), its
+/// discovery's steps recorded in [`STEPS`].
 fn chair() -> &'static CompileOutput {
     static OUT: OnceLock<CompileOutput> = OnceLock::new();
     OUT.get_or_init(|| {
         let dir = common::repo().join("examples/variations/chair");
+        let record = |done, total| STEPS.lock().expect("steps").push((done, total));
         let options = CompileOptions {
             model: common::repo().join("examples/chair.scad"),
             variations: VARIATIONS
@@ -30,6 +39,10 @@ fn chair() -> &'static CompileOutput {
             plot: Some(PlotFormat::Png),
             gallery: true,
             page: true,
+            progress: Progress {
+                stage: None,
+                step: Some(Arc::new(record)),
+            },
             ..CompileOptions::default()
         };
         compile(&options, &mut SourceMap::new()).expect("the chair compiles")
@@ -211,6 +224,37 @@ fn report_page_shows_what_was_decided_and_links_nothing_outside() {
     assert!(page.contains("<svg"), "the plot is inline");
 }
 
+#[test]
+fn discovery_tells_its_steps_up_to_every_relation_decided() {
+    let n = chair().compiled.candidates.list.len();
+    let steps = STEPS.lock().expect("steps").clone();
+    assert!(steps.len() > 2, "{steps:?}");
+    assert!(steps.iter().all(|&(_, total)| total == n), "{steps:?}");
+    assert!(steps.windows(2).all(|w| w[0].0 <= w[1].0), "{steps:?}");
+    assert!(
+        steps[0].0 < n,
+        "the first call is before any step: {steps:?}"
+    );
+    assert_eq!(steps.last(), Some(&(n, n)));
+}
+
+#[test]
+fn the_cutoff_of_exact_variations_says_so_instead_of_a_zero_sigma() {
+    // The chair's variations are typed files: exact, so the noise sits at its floor.
+    let report = &chair().compiled.report;
+    let noise = report.noise.expect("a noise model");
+    assert!(noise.exact(), "{noise:?}");
+    let reason = &report.cutoff.as_ref().expect("a cutoff").reason;
+    assert!(reason.contains("(exact variations, no noise)"), "{reason}");
+    assert!(
+        !reason.contains("σ =") && !reason.contains("odds"),
+        "{reason}"
+    );
+    let page = chair().page.as_ref().expect("a page");
+    assert!(page.contains("The variations are exact (no noise)"));
+    assert!(!page.contains("σ = 0.000"));
+}
+
 /// Debian's Chromium, headless, with the flags this closed network needs and a fresh
 /// profile in `dir`.
 fn chromium(dir: &Path) -> Command {
@@ -309,6 +353,7 @@ fn the_command_writes_each_format_its_file_names_and_keeps_the_json_report() {
         .arg(dir.join("curve.svg"))
         .arg("--gallery")
         .arg(dir.join("g.png"))
+        .env(QUIET_FOR_VAR, "0")
         .output()
         .expect("the binary runs");
     assert!(
@@ -348,25 +393,30 @@ fn a_long_job_shows_its_progress_on_a_terminal() {
     for v in VARIATIONS {
         line += &format!(" --vary {}", vary.join(format!("{v}.scad")).display());
     }
-    // The page's pictures take more than the second the bar waits for.
     line += &format!(" --report {}", dir.join("r.html").display());
-    let start = std::time::Instant::now();
+    // The job here takes less than the second the bar waits for: it is told to show at once.
     let run = Command::new("script")
         .args(["-qefc", &line, "/dev/null"])
+        .env(QUIET_FOR_VAR, "0")
         .output()
         .expect("`script` (util-linux) runs");
-    let took = start.elapsed();
     assert!(
         run.status.success(),
         "{}",
         String::from_utf8_lossy(&run.stderr)
     );
     let tty = String::from_utf8_lossy(&run.stdout);
-    // The bar shows once the job has run a second (under `cargo test` it runs about three).
-    let shown = tty.contains("writing the report page");
+    // The bar is over discovery's steps, of every candidate relation, with the stage beside.
+    let n = chair().compiled.candidates.list.len();
+    let steps = format!("/{n} relations decided");
     assert!(
-        shown || took.as_secs_f64() < 1.5,
-        "no progress bar in {took:?}: {tty:?}"
+        tty.contains(&steps),
+        "no bar over discovery's steps ({steps}): {tty:?}"
+    );
+    assert!(tty.contains(&format!("{n}{steps} · writing the report page")));
+    assert!(
+        tty.contains("reading the model"),
+        "no stage before it: {tty:?}"
     );
     assert!(tty.contains("sliders drive"), "no summary line: {tty:?}");
     let _ = std::fs::remove_dir_all(&dir);

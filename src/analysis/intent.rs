@@ -23,7 +23,7 @@ use super::candidates::Candidates;
 use super::chosen::{Chosen, candidates_by_slot, forget, rows_of};
 use super::classes::prior_log_odds;
 use super::discover::{Sample, Similarity, fidelity};
-use super::noise::{Evidence, NoiseModel};
+use super::noise::{Evidence, NoiseModel, figures};
 use super::pool::Pool;
 use super::project::{Faces, Projector};
 use crate::ir::{Affine, Model};
@@ -159,13 +159,16 @@ fn start_points<'a, R>(faces: &Faces, samples: &'a [Sample]) -> Vec<Point<'a, R>
 
 /// Runs the test to the end (every candidate taken or implied). With `sim`, the distortion
 /// curve is measured along the way (exact IoU after every step, most of the time taken);
-/// the decisions do not depend on it.
+/// the decisions do not depend on it. `step` is told, before the first step and after each,
+/// how many candidates are decided (taken or implied) of how many there are; the last call
+/// is `(n, n)`.
 pub fn select<S: Similarity>(
     model: &Model,
     faces: &Faces,
     candidates: &Candidates,
     samples: &[Sample],
     sim: Option<&S>,
+    step: &mut dyn FnMut(usize, usize),
 ) -> Selection {
     let n = candidates.list.len();
     let floor = Tolerance::for_size(model.size()).epsilon;
@@ -174,13 +177,7 @@ pub fn select<S: Similarity>(
     let mut chosen = Chosen::new(faces);
     let mut pool = Pool::new(&vec![0; n], |i| !chosen.implies(&rows_of(candidates, i)));
     let mut points = start_points::<S::Reference>(faces, samples);
-    let mut scores = Scores {
-        evidence: vec![None; n],
-        scored_at: vec![0; n],
-    };
-    for c in (0..n).filter(|&c| pool.is_alive(c)) {
-        scores.evidence[c] = Some(cx.evidence(c, &mut points, &mut chosen));
-    }
+    let mut scores = first_scores(&cx, &pool, &mut points, &mut chosen);
     let all: Vec<Evidence> = (0..n)
         .map(|c| scores.evidence[c].unwrap_or(Evidence { cost: 0.0, dof: 0 }))
         .collect();
@@ -201,8 +198,9 @@ pub fn select<S: Similarity>(
     let mut exact: Vec<bool> = (0..n)
         .map(|c| pool.is_alive(c) && cx.exact(c, &points))
         .collect();
+    step(n - pool.alive_count(), n);
     while pool.lowest_tier().is_some() && !samples.is_empty() {
-        let step = out.order.len() + 1;
+        let at = out.order.len() + 1;
         let mut gone = Vec::new();
         let batch: Vec<usize> = (0..n).filter(|&c| pool.is_alive(c) && exact[c]).collect();
         if !batch.is_empty() {
@@ -226,7 +224,7 @@ pub fn select<S: Similarity>(
                 &mut points,
                 &mut chosen,
                 &mut scores,
-                step,
+                at,
             ) else {
                 break;
             };
@@ -257,12 +255,66 @@ pub fn select<S: Similarity>(
         if let Some(last) = out.implied.last_mut() {
             last.extend(gone);
         }
+        step(n - pool.alive_count(), n);
     }
+    step(n, n);
     out.accepted = cut.unwrap_or(out.order.len());
     out
 }
 
+/// Every candidate's evidence at the variations' own values (none for those out of play).
+fn first_scores<R>(
+    cx: &Context<'_>,
+    pool: &Pool,
+    points: &mut [Point<'_, R>],
+    chosen: &mut Chosen,
+) -> Scores {
+    let n = cx.candidates.list.len();
+    let mut scores = Scores {
+        evidence: vec![None; n],
+        scored_at: vec![0; n],
+    };
+    for c in (0..n).filter(|&c| pool.is_alive(c)) {
+        scores.evidence[c] = Some(cx.evidence(c, points, chosen));
+    }
+    scores
+}
+
 impl Selection {
+    /// Why the test cut where it did, in words (`describe` names a candidate). With exact
+    /// variations (`NoiseModel::exact`) the odds and deviations measure nothing but the
+    /// float tolerance, so the reason gives the residual in world units instead.
+    pub fn cutoff_reason(&self, describe: &dyn Fn(usize) -> String) -> String {
+        let keep = self.accepted;
+        let noise = self.noise.describe();
+        let Some(&c) = self.order.get(keep) else {
+            return if self.noise.exact() {
+                format!("every relation holds in the variations ({noise})")
+            } else {
+                format!(
+                    "every relation is more likely intent than not under the variations' noise ({noise})"
+                )
+            };
+        };
+        let what = format!("relation {} ({})", keep + 1, describe(c));
+        let odds = self.log_odds[keep].exp();
+        if !self.z[keep].is_finite() {
+            format!(
+                "{what} is in no variation that keeps both its parts, and relations of its kind are more often accidental than intent (odds {odds:.3} to 1)"
+            )
+        } else if self.noise.exact() {
+            format!(
+                "{what} does not hold in the variations: they leave it off by up to {} world units ({noise})",
+                figures(self.residual[c])
+            )
+        } else {
+            format!(
+                "{what} is more likely broken than intent (odds {odds:.3} to 1, its residuals {:.1} noise deviations off; noise {noise})",
+                self.z[keep]
+            )
+        }
+    }
+
     fn push(&mut self, c: usize, z: f64, log_odds: f64, curve: Option<f64>) {
         self.order.push(c);
         self.z.push(z);
@@ -405,4 +457,70 @@ fn largest_residual(cx: &Context<'_>, c: usize, samples: &[Sample]) -> f64 {
                 .map(|r| r.eval(&s.values).abs())
         })
         .fold(0.0, f64::max)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Three steps taking candidates 2, 0 and 1; the third is off by 0.25 world units.
+    fn selection(sigma: f64, accepted: usize) -> Selection {
+        Selection {
+            order: vec![2, 0, 1],
+            z: vec![-1.0, 0.5, 40.0],
+            log_odds: vec![5.0, 2.0, -30.0],
+            curve: Vec::new(),
+            implied: vec![Vec::new(); 3],
+            accepted,
+            noise: NoiseModel {
+                sigma,
+                floor: 1e-6,
+                pooled: 10,
+                critical_z: 3.09,
+            },
+            residual: vec![0.0, 0.25, 0.0],
+        }
+    }
+
+    fn name(c: usize) -> String {
+        format!("candidate {c}")
+    }
+
+    #[test]
+    fn the_cutoff_reason_of_exact_variations_gives_the_residual_not_a_zero_sigma() {
+        let cut = selection(1e-6, 2).cutoff_reason(&name);
+        assert!(
+            cut.starts_with("relation 3 (candidate 1) does not hold in the variations"),
+            "{cut}"
+        );
+        assert!(cut.contains("up to 0.250 world units (exact variations, no noise)"));
+        assert!(!cut.contains('σ') && !cut.contains("odds"), "{cut}");
+        assert_eq!(
+            selection(1e-6, 3).cutoff_reason(&name),
+            "every relation holds in the variations (exact variations, no noise)"
+        );
+    }
+
+    #[test]
+    fn the_cutoff_reason_of_noisy_variations_keeps_sigma_and_the_odds() {
+        let cut = selection(0.2, 2).cutoff_reason(&name);
+        assert!(
+            cut.contains("more likely broken than intent")
+                && cut.contains("40.0 noise deviations off")
+                && cut.ends_with("noise σ = 0.200 world units)"),
+            "{cut}"
+        );
+        let all = selection(0.2, 3).cutoff_reason(&name);
+        assert!(all.contains("(σ = 0.200 world units)"), "{all}");
+        // A relation no variation sees is cut by its kind's prior, not by deviations.
+        let unseen = Selection {
+            z: vec![-1.0, 0.5, f64::NEG_INFINITY],
+            ..selection(0.2, 2)
+        };
+        let cut = unseen.cutoff_reason(&name);
+        assert!(
+            cut.contains("in no variation that keeps both its parts") && !cut.contains("inf"),
+            "{cut}"
+        );
+    }
 }

@@ -73,7 +73,32 @@ pub fn chi2_z(x: f64, dof: usize) -> f64 {
     ((x.max(0.0) / k).cbrt() - (1.0 - v)) / v.sqrt()
 }
 
+/// A length in world units for people: three decimals, or three significant figures in
+/// scientific notation when that would show no figure at all.
+pub fn figures(v: f64) -> String {
+    if v == 0.0 || v.abs() >= 0.01 {
+        format!("{v:.3}")
+    } else {
+        format!("{v:.2e}")
+    }
+}
+
 impl NoiseModel {
+    /// Whether the variations are exact: no noise was seen, and `sigma` sits at the floor
+    /// (the model's float tolerance), where a relation is kept only if it holds.
+    pub fn exact(&self) -> bool {
+        self.sigma <= self.floor
+    }
+
+    /// The noise in words: `σ = 0.120 world units`, or that the variations are exact.
+    pub fn describe(&self) -> String {
+        if self.exact() {
+            "exact variations, no noise".to_string()
+        } else {
+            format!("σ = {} world units", figures(self.sigma))
+        }
+    }
+
     /// The test statistic of `e` under this noise.
     pub fn z(&self, e: Evidence) -> f64 {
         chi2_z(e.cost / (self.sigma * self.sigma), e.dof)
@@ -210,6 +235,29 @@ mod tests {
                 dof,
             })
             .collect()
+    }
+
+    #[test]
+    fn exact_variations_are_described_as_exact_and_noise_by_its_sigma() {
+        // Exact variations: every residual is zero, the estimate sits at the floor.
+        let exact = NoiseModel::estimate(&[Evidence { cost: 0.0, dof: 3 }; 20], 1e-6, 1e6);
+        assert!(exact.exact(), "{exact:?}");
+        assert_eq!(exact.describe(), "exact variations, no noise");
+        assert!(!exact.describe().contains("σ"));
+        let noisy = NoiseModel::estimate(&intent(300, 3, 0.7, 9), 1e-6, 1e6);
+        assert!(!noisy.exact(), "{noisy:?}");
+        let text = noisy.describe();
+        assert!(
+            text.starts_with("σ = 0.") && text.ends_with(" world units"),
+            "{text}"
+        );
+        // Noise too small for three decimals keeps its figures.
+        let small = NoiseModel::estimate(&intent(300, 3, 4e-4, 9), 1e-6, 1e6);
+        assert!(!small.exact(), "{small:?}");
+        assert!(small.describe().contains("e-4"), "{}", small.describe());
+        assert_eq!(figures(0.1234), "0.123");
+        assert_eq!(figures(0.0), "0.000");
+        assert_eq!(figures(0.000_456), "4.56e-4");
     }
 
     #[test]

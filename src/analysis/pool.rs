@@ -41,6 +41,11 @@ impl Pool {
         self.alive[c]
     }
 
+    /// How many candidates are still in play.
+    pub fn alive_count(&self) -> usize {
+        self.count.iter().sum()
+    }
+
     pub fn is_empty(&self) -> bool {
         self.count.iter().all(|&n| n == 0)
     }
@@ -103,12 +108,15 @@ mod tests {
     fn tiers_empty_in_order_and_exact_candidates_leave_with_their_owners() {
         let tiers = [1, 0, 2, 0, 1];
         let mut p = Pool::new(&tiers, |c| c != 4);
+        assert_eq!(p.alive_count(), 4);
         assert_eq!(p.lowest_tier(), Some(0));
         p.set_exact(3, true);
         p.set_exact(0, true);
         assert_eq!(p.exact_in(0), vec![3]);
         p.kill(1);
         p.kill(3);
+        p.kill(3);
+        assert_eq!(p.alive_count(), 2, "a candidate leaves play once");
         assert!(p.exact_in(0).is_empty());
         assert_eq!(p.lowest_tier(), Some(1));
         assert_eq!(p.members(1).collect::<Vec<_>>(), vec![0]);
@@ -116,6 +124,7 @@ mod tests {
         assert_eq!(p.lowest_tier(), Some(2));
         p.kill(2);
         assert!(p.is_empty());
+        assert_eq!(p.alive_count(), 0);
         assert_eq!(p.lowest_tier(), None);
     }
 }

@@ -11,6 +11,7 @@ use super::emit::EmitPlan;
 use super::gallery::{Tile, cameras, render_tile};
 use super::plot::escape;
 use super::report::Report;
+use crate::analysis::noise::NoiseModel;
 use crate::analysis::reparam::Solution;
 use crate::ir::Model;
 use std::fmt::Write;
@@ -152,6 +153,21 @@ fn evidence(c: &super::report::ChosenRelation) -> String {
     parts.join("; ")
 }
 
+/// What the report says of the variations' noise.
+fn noise_line(n: &NoiseModel) -> String {
+    if n.exact() {
+        " The variations are exact (no noise): a relation any variation breaks is left out."
+            .to_string()
+    } else {
+        format!(
+            " The variations' noise: {} (pooled over {} relations); a relation is broken beyond {:.1} deviations.",
+            n.describe(),
+            n.pooled,
+            n.critical_z
+        )
+    }
+}
+
 /// The relations kept, and those left out with why.
 fn relations(h: &mut String, r: &Report) {
     let keep = r.keep_step().min(r.chosen.len());
@@ -159,10 +175,7 @@ fn relations(h: &mut String, r: &Report) {
         h,
         "<h2>Relations kept ({keep})</h2>\n<p class=\"small\">How they were chosen: {}.{}</p>\n<ol>",
         escape(&r.method),
-        r.noise.as_ref().map_or(String::new(), |n| format!(
-            " The variations' noise: σ = {:.3} world units (pooled over {} relations); a relation is broken beyond {:.1} deviations.",
-            n.sigma, n.pooled, n.critical_z
-        ))
+        r.noise.as_ref().map_or(String::new(), noise_line)
     );
     for c in &r.chosen[..keep] {
         let _ = writeln!(

@@ -16,8 +16,20 @@ use std::process::ExitCode;
 use std::sync::Arc;
 use std::time::Duration;
 
-/// How long the job runs before its progress bar shows.
+/// How long the job runs before its progress bar shows, unless [`QUIET_FOR_VAR`] says.
 const QUIET_FOR: Duration = Duration::from_secs(1);
+
+/// The environment variable that sets [`QUIET_FOR`] in seconds (0: at once; tests use it).
+const QUIET_FOR_VAR: &str = "REPARAMC_PROGRESS_AFTER";
+
+/// How long the job runs before its progress bar shows.
+fn quiet_for() -> Duration {
+    std::env::var(QUIET_FOR_VAR)
+        .ok()
+        .and_then(|s| s.trim().parse::<f64>().ok())
+        .and_then(|s| Duration::try_from_secs_f64(s).ok())
+        .unwrap_or(QUIET_FOR)
+}
 
 /// Whether `path` names an HTML page.
 fn is_html(path: &Path) -> bool {
@@ -25,19 +37,27 @@ fn is_html(path: &Path) -> bool {
         .is_some_and(|e| e.eq_ignore_ascii_case("html") || e.eq_ignore_ascii_case("htm"))
 }
 
-/// A bar over the job's stages on standard error, shown once the job has run for
-/// [`QUIET_FOR`] and never when standard error is not a terminal.
+/// What the bar shows before discovery: a spinner and the stage (cut to the terminal's width).
+const STAGE_TEMPLATE: &str = "{spinner} [{elapsed}] {wide_msg}";
+
+/// What it shows from discovery's first step on: the candidate relations decided, of all,
+/// and the stage (on one line of 80 columns for the stages after discovery).
+const STEP_TEMPLATE: &str =
+    "{spinner} [{elapsed}] {bar:16} {pos}/{len} relations decided · {wide_msg}";
+
+/// One bar over discovery's steps on standard error (a spinner with the stage before them),
+/// shown once the job has run for [`quiet_for`] and never when standard error is not a
+/// terminal.
 fn progress_bar() -> (ProgressBar, Progress) {
     let bar = ProgressBar::with_draw_target(None, ProgressDrawTarget::hidden());
-    if let Ok(style) =
-        ProgressStyle::with_template("{spinner} [{elapsed}] {bar:30} {pos}/{len} {msg}")
-    {
+    if let Ok(style) = ProgressStyle::with_template(STAGE_TEMPLATE) {
         bar.set_style(style);
     }
     if std::io::stderr().is_terminal() {
         let later = bar.clone();
+        let quiet = quiet_for();
         std::thread::spawn(move || {
-            std::thread::sleep(QUIET_FOR);
+            std::thread::sleep(quiet);
             if !later.is_finished() {
                 later.set_draw_target(ProgressDrawTarget::stderr());
                 later.enable_steady_tick(Duration::from_millis(120));
@@ -45,13 +65,21 @@ fn progress_bar() -> (ProgressBar, Progress) {
         });
     }
     let told = bar.clone();
-    let progress = Progress(Some(Arc::new(
-        move |stage: usize, stages: usize, what: &str| {
-            told.set_length(stages as u64);
-            told.set_position(stage.saturating_sub(1) as u64);
+    let stepped = bar.clone();
+    let progress = Progress {
+        stage: Some(Arc::new(move |_, _, what: &str| {
             told.set_message(what.to_string());
-        },
-    )));
+        })),
+        step: Some(Arc::new(move |done: usize, total: usize| {
+            if stepped.length().is_none()
+                && let Ok(style) = ProgressStyle::with_template(STEP_TEMPLATE)
+            {
+                stepped.set_style(style);
+            }
+            stepped.set_length(total as u64);
+            stepped.set_position(done as u64);
+        })),
+    };
     (bar, progress)
 }
 

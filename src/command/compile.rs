@@ -67,7 +67,7 @@ pub struct CompileOptions {
     pub gallery: bool,
     /// Write the report as an HTML page.
     pub page: bool,
-    /// Told each stage as it starts.
+    /// Told each stage as it starts, and each of discovery's steps.
     pub progress: Progress,
     /// Make a unified diff from the model to the output, which will be written as this
     /// name (the diff's `+++` header; the `---` header is the model's path).
@@ -139,7 +139,9 @@ pub fn compile(options: &CompileOptions, sources: &mut SourceMap) -> DResult<Com
         job.distortion_curve |= options.plot.is_some() || options.page;
         tell("choosing the relations to keep");
         let model = &evaluated.model;
-        let compiled = reparameterize(sources, &loaded, model, &variations, &job);
+        let mut step = |done, total| options.progress.step(done, total);
+        let compiled =
+            reparameterize_telling(sources, &loaded, model, &variations, &job, &mut step);
         let pictures = pictures(options, model, &compiled, &mut tell)?;
         let diff = options.diff_to.as_ref().map(|to| {
             let from = options.model.display().to_string();
@@ -164,6 +166,19 @@ pub fn reparameterize(
     variations: &[Variation],
     options: &Options,
 ) -> Compiled {
+    reparameterize_telling(sources, loaded, model, variations, options, &mut |_, _| {})
+}
+
+/// [`reparameterize`], telling `step` how far discovery is: candidates decided, of how many
+/// (`analysis::intent::select`).
+pub fn reparameterize_telling(
+    sources: &SourceMap,
+    loaded: &Loaded,
+    model: &Model,
+    variations: &[Variation],
+    options: &Options,
+    step: &mut dyn FnMut(usize, usize),
+) -> Compiled {
     // Candidates: every relation that holds on the input (and on the variations).
     let raw: Vec<Vec<f64>> = variations.iter().map(|v| v.values.clone()).collect();
     let candidates = find_candidates_for(model, &raw);
@@ -180,7 +195,7 @@ pub fn reparameterize(
         by_prior(model, &candidates, options.all_constraints)
     } else {
         let curve = options.distortion_curve.then_some(&sim);
-        by_discovery(model, &candidates, &faces, curve, &values, &optional)
+        by_discovery(model, &candidates, &faces, curve, &values, &optional, step)
     };
     // Reparameterization: the kept rows solved with anchors; the variations projected.
     let kept: Vec<Candidate> = choice
@@ -311,6 +326,7 @@ fn by_discovery(
     sim: Option<&VolumeSimilarity>,
     values: &[Vec<f64>],
     optional: &[Vec<usize>],
+    step: &mut dyn FnMut(usize, usize),
 ) -> Choice {
     let samples: Vec<Sample> = values
         .iter()
@@ -320,7 +336,7 @@ fn by_discovery(
             optional: o.clone(),
         })
         .collect();
-    let sel = select(model, faces, candidates, &samples, sim);
+    let sel = select(model, faces, candidates, &samples, sim, step);
     let chosen = sel
         .order
         .iter()
@@ -345,25 +361,11 @@ fn by_discovery(
 /// The cutoff the test made, with the paper's change points on the same curve beside it.
 fn test_cutoff(candidates: &Candidates, sel: &Selection) -> Cutoff {
     let (paper, published) = change_points(&sel.curve);
-    let keep = sel.accepted;
-    let sigma = sel.noise.sigma;
-    let reason = match sel.order.get(keep) {
-        None => format!(
-            "every relation is more likely intent than not under the variations' noise (σ = {sigma:.3} world units)"
-        ),
-        Some(&c) => format!(
-            "relation {} ({}) is more likely broken than intent (odds {:.3} to 1, its residuals {:.1} noise deviations off; noise σ = {sigma:.3} world units)",
-            keep + 1,
-            candidates.describe(&candidates.list[c]),
-            sel.log_odds[keep].exp(),
-            sel.z[keep],
-        ),
-    };
     Cutoff {
-        keep,
+        keep: sel.accepted,
         paper,
         published,
-        reason,
+        reason: sel.cutoff_reason(&|c| candidates.describe(&candidates.list[c])),
     }
 }
 

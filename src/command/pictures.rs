@@ -1,5 +1,6 @@
 //! What the main job draws besides the model: the distortion plot, the presets gallery and
-//! the report page, and the [`Progress`] hook that tells a caller each stage as it starts.
+//! the report page, and the [`Progress`] hook that tells a caller each stage as it starts
+//! and each of discovery's steps.
 //!
 //! The pictures are made here, after the job, from what it decided ([`Compiled`]); the
 //! drawing itself is `back`'s (`plot`, `gallery`, `page`). Nothing here prints.
@@ -12,29 +13,41 @@ use crate::front::diag::{DResult, Diagnostic};
 use crate::ir::Model;
 use std::sync::Arc;
 
-/// Told each stage of the main job as it starts: its number from 1, how many there are, and
-/// what it does.
+/// Told each stage of the main job as it starts (its number from 1, how many there are, and
+/// what it does), and, while discovery runs, how many candidate relations it has decided
+/// of how many there are.
 #[derive(Clone, Default)]
-pub struct Progress(pub Option<Arc<StageHook>>);
+pub struct Progress {
+    pub stage: Option<Arc<StageHook>>,
+    pub step: Option<Arc<StepHook>>,
+}
 
-/// What a [`Progress`] calls: (stage, stages, what it does).
+/// What [`Progress`] calls as a stage starts: (stage, stages, what it does).
 pub type StageHook = dyn Fn(usize, usize, &str) + Send + Sync;
+
+/// What [`Progress`] calls after each of discovery's steps: (relations decided, relations).
+pub type StepHook = dyn Fn(usize, usize) + Send + Sync;
 
 impl Progress {
     pub(super) fn tell(&self, stage: usize, stages: usize, what: &str) {
-        if let Some(f) = &self.0 {
+        if let Some(f) = &self.stage {
             f(stage, stages, what);
+        }
+    }
+
+    pub(super) fn step(&self, done: usize, total: usize) {
+        if let Some(f) = &self.step {
+            f(done, total);
         }
     }
 }
 
 impl std::fmt::Debug for Progress {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(if self.0.is_some() {
-            "Progress(on)"
-        } else {
-            "Progress(off)"
-        })
+        f.debug_struct("Progress")
+            .field("stage", &self.stage.is_some())
+            .field("step", &self.step.is_some())
+            .finish()
     }
 }
 
