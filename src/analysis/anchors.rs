@@ -1,11 +1,12 @@
 //! Anchors: where a re-parameterized model is pinned, and variations read in its frame.
 //!
 //! A model's sliders say nothing about where it stands, so anchor rows pin it: the centre
-//! of its extreme faces in x and y and its floor in z ([`anchor_rows`]), on each axis along
+//! of its extreme faces in x and y and its floor in z ([`Anchors::rows`]), on each axis along
 //! which some slot change translates the whole model ([`translations`]). A variation
 //! is projected keeping its own place (anchors at its own centre and floor), then moved
-//! rigidly so its anchors are where the input has them ([`moved_to_input_anchor`]): sliders
-//! are read in the input's frame. Invariant: an axis is pinned or moved only when some slot
+//! rigidly so its anchors are where the input has them ([`Anchors::moved_to_input`]):
+//! sliders are read in the input's frame. [`Anchors`] holds all of it with the gauge,
+//! worked out once per model. Invariant: an axis is pinned or moved only when some slot
 //! change translates every face alike along it (to the tolerance), so an anchor never pins
 //! a size.
 
@@ -15,28 +16,70 @@ use crate::ir::feature::world_intervals;
 use crate::ir::{Affine, Model, SlotId};
 use crate::tolerance::RELATIVE_EPSILON;
 
-/// Rows that pin the model in place: its centre in x and y and its floor in z, at the
-/// input, on each axis along which some slot change moves the whole model. The faces used
-/// are the input's extremes.
-pub fn anchor_rows(model: &Model) -> Vec<Affine> {
-    anchor_rows_at(model, &model.slot_values())
+/// What pins a model in place, worked out once per model: none of it depends on a
+/// variation, so discovery, the solve, the projections and the scores share one value.
+#[derive(Debug, Clone)]
+pub struct Anchors {
+    /// Each axis's anchor form: the centre of the input's extreme faces in x and y, the
+    /// lowest face in z (`None` where those faces are not affine).
+    pub forms: [Option<Affine>; 3],
+    /// Each axis's unit translation in slot space (see [`translations`]).
+    pub translations: [Option<Vec<f64>>; 3],
+    /// The gauge rows (`gauge::gauge_rows`): slots held at the input.
+    pub gauge: Vec<Affine>,
+    /// The model's slot values at the input.
+    pub input: Vec<f64>,
 }
 
-/// The anchor rows with their constants taken at `at` instead of the input: the same
-/// faces, held where `at` has them (a variation keeps its own place while projected).
-///
-/// An axis gets a row only when the model can translate along it (see [`translations`]):
-/// where no slot change moves every face alike, the model's place on that axis is already
-/// fixed by its shape, and pinning its centre would pin a size instead.
-pub fn anchor_rows_at(model: &Model, at: &[f64]) -> Vec<Affine> {
-    let free = translations(model);
-    anchor_forms(model)
-        .into_iter()
-        .enumerate()
-        .filter(|(a, _)| free[*a].is_some())
-        .filter_map(|(_, f)| f)
-        .map(|f| f.sub(&Affine::constant(f.eval(at))))
-        .collect()
+impl Anchors {
+    /// The anchors of `model`: its gauge, anchor forms and translations.
+    pub fn of(model: &Model) -> Anchors {
+        let gauge = super::gauge::gauge_rows(model);
+        Anchors {
+            forms: anchor_forms(model),
+            translations: translations(model, &gauge),
+            gauge,
+            input: model.slot_values(),
+        }
+    }
+
+    /// Rows that pin the model in place: its centre in x and y and its floor in z, at the
+    /// input, on each axis along which some slot change moves the whole model. The faces
+    /// used are the input's extremes.
+    pub fn rows(&self) -> Vec<Affine> {
+        self.rows_at(&self.input)
+    }
+
+    /// The anchor rows with their constants taken at `at` instead of the input: the same
+    /// faces, held where `at` has them (a variation keeps its own place while projected).
+    ///
+    /// An axis gets a row only when the model can translate along it (see [`translations`]):
+    /// where no slot change moves every face alike, the model's place on that axis is
+    /// already fixed by its shape, and pinning its centre would pin a size instead.
+    pub fn rows_at(&self, at: &[f64]) -> Vec<Affine> {
+        self.forms
+            .iter()
+            .zip(&self.translations)
+            .filter(|(_, t)| t.is_some())
+            .filter_map(|(f, _)| f.as_ref())
+            .map(|f| f.sub(&Affine::constant(f.eval(at))))
+            .collect()
+    }
+
+    /// `x` moved rigidly (in slot space) so the model's anchors — centre in x and y, floor
+    /// in z — are where the input has them, along each axis the model can translate on: the
+    /// smallest slot change that shifts every face by the same amount along its axis.
+    /// Sliders are read in the input's frame.
+    pub fn moved_to_input(&self, x: &[f64]) -> Vec<f64> {
+        let mut out = x.to_vec();
+        for (form, step) in self.forms.iter().zip(&self.translations) {
+            if let (Some(f), Some(step)) = (form, step) {
+                let shift = f.eval(&self.input) - f.eval(x);
+                out.iter_mut().zip(step).for_each(|(o, d)| *o += shift * d);
+            }
+        }
+        out
+    }
 }
 
 /// Each axis's anchor form: the centre of the input's extreme faces in x and y, the lowest
@@ -70,8 +113,8 @@ fn anchor_forms(model: &Model) -> [Option<Affine>; 3] {
 
 /// For each axis, the smallest slot change that moves every face along that axis by one
 /// unit and no face along the others (`None`: the model cannot translate that way; a face
-/// no slot moves, or faces tied to sizes, prevent it).
-pub fn translations(model: &Model) -> [Option<Vec<f64>>; 3] {
+/// no slot moves, or faces tied to sizes, prevent it). Slots the `gauge` holds stay held.
+pub fn translations(model: &Model, gauge: &[Affine]) -> [Option<Vec<f64>>; 3] {
     let mut faces: Vec<(usize, &Affine)> = Vec::new();
     let mut fixed = [false; 3];
     let intervals: Vec<_> = model
@@ -91,7 +134,6 @@ pub fn translations(model: &Model) -> [Option<Vec<f64>>; 3] {
         }
     }
     let tolerance = RELATIVE_EPSILON * model.size().max(1.0);
-    let gauge = super::gauge::gauge_rows(model);
     std::array::from_fn(|axis| {
         if fixed[axis] {
             return None;
@@ -107,41 +149,24 @@ pub fn translations(model: &Model) -> [Option<Vec<f64>>; 3] {
     })
 }
 
-/// `x` moved rigidly (in slot space) so the model's anchors — centre in x and y, floor in
-/// z — are where the input has them, along each axis the model can translate on: the
-/// smallest slot change that shifts every face by the same amount along its axis. Sliders
-/// are read in the input's frame.
-pub fn moved_to_input_anchor(model: &Model, x: &[f64]) -> Vec<f64> {
-    let values = model.slot_values();
-    let mut out = x.to_vec();
-    for (form, step) in anchor_forms(model).iter().zip(translations(model)) {
-        if let (Some(f), Some(step)) = (form, step) {
-            let shift = f.eval(&values) - f.eval(x);
-            out.iter_mut().zip(&step).for_each(|(o, d)| *o += shift * d);
-        }
-    }
-    out
-}
-
 /// Each variation (slot values, with the parts it does without) projected onto `rows` and
 /// its own anchors, then moved into the input's frame. Rigid moves are not what the sliders
 /// express, and the free sizes do not depend on them.
 pub fn project_variations(
-    model: &Model,
+    anchors: &Anchors,
     faces: &Faces,
     rows: &[Affine],
     values: &[Vec<f64>],
     optional: &[Vec<usize>],
 ) -> Vec<Vec<f64>> {
-    let gauge = super::gauge::gauge_rows(model);
     values
         .iter()
         .zip(optional)
         .map(|(v, o)| {
-            let anchors = anchor_rows_at(model, v);
-            let all_rows: Vec<&Affine> = rows.iter().chain(&gauge).chain(&anchors).collect();
+            let own = anchors.rows_at(v);
+            let all_rows: Vec<&Affine> = rows.iter().chain(&anchors.gauge).chain(&own).collect();
             let p = project_onto(faces, v, &all_rows, o);
-            moved_to_input_anchor(model, &p)
+            anchors.moved_to_input(&p)
         })
         .collect()
 }

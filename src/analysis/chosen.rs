@@ -10,7 +10,7 @@
 
 use super::candidates::Candidates;
 use super::pool::Pool;
-use super::project::{Faces, Projector};
+use super::project::{Faces, Projection, Projector};
 use super::rowbasis::RowBasis;
 use super::slotblocks::SlotBlocks;
 use crate::ir::{Affine, SlotId};
@@ -79,6 +79,17 @@ impl Chosen {
         rows: &[&Affine],
     ) -> (Vec<(SlotId, f64)>, f64) {
         projector.shift_and_cost(faces, &self.basis, &mut self.blocks, &self.members, x, rows)
+    }
+
+    /// What projecting any point onto `rows` with `projector` needs (see
+    /// [`Projector::projection`]).
+    pub fn projection(
+        &mut self,
+        projector: &mut Projector,
+        faces: &Faces,
+        rows: &[&Affine],
+    ) -> Projection {
+        projector.projection(faces, &self.basis, &mut self.blocks, &self.members, rows)
     }
 
     /// Whether the chosen rows imply every one of `rows`.

@@ -25,7 +25,7 @@ use super::classes::prior_log_odds;
 use super::discover::{Sample, Similarity, fidelity};
 use super::noise::{Evidence, NoiseModel, figures};
 use super::pool::Pool;
-use super::project::{Faces, Projector};
+use super::project::{Faces, Projection, Projector};
 use crate::ir::{Affine, Model};
 use crate::tolerance::{NOISE_MAX_SHARE, RELATIVE_ROUNDOFF, Tolerance};
 
@@ -52,10 +52,12 @@ pub struct Selection {
     pub residual: Vec<f64>,
 }
 
-/// One variation during the selection: where it is and what projecting it needs.
+/// One variation during the selection: where it is and which projector is its own.
 struct Point<'a, R> {
     sample: &'a Sample,
-    projector: Projector,
+    /// Its projector among the selection's: variations that do without the same parts share
+    /// the noise metric, so they share one projector and each projection is made once.
+    group: usize,
     current: Vec<f64>,
     /// The original variation prepared for IoU (made when it first moves).
     original: Option<R>,
@@ -97,14 +99,22 @@ impl Context<'_> {
     }
 
     /// The candidate's evidence at the variations' current points.
-    fn evidence<R>(&self, c: usize, points: &mut [Point<'_, R>], chosen: &mut Chosen) -> Evidence {
+    fn evidence<R>(
+        &self,
+        c: usize,
+        points: &[Point<'_, R>],
+        projectors: &mut [Projector],
+        chosen: &mut Chosen,
+    ) -> Evidence {
         let rows = rows_of(self.candidates, c);
+        let mut made: Vec<Option<Projection>> = projectors.iter().map(|_| None).collect();
         let mut cost = 0.0;
-        for (p, &seen) in points.iter_mut().zip(&self.seen[c]) {
+        for (p, &seen) in points.iter().zip(&self.seen[c]) {
             if seen {
-                cost += chosen
-                    .shift(&mut p.projector, self.faces, &p.current, &rows)
-                    .1;
+                let projector = &mut projectors[p.group];
+                let projection = made[p.group]
+                    .get_or_insert_with(|| chosen.projection(projector, self.faces, &rows));
+                cost += projector.shift_and_cost_at(projection, &p.current, &rows).1;
             }
         }
         Evidence {
@@ -143,18 +153,35 @@ fn informative(
         .collect()
 }
 
-/// Every variation at its own values, projected in the noise model's metric.
-fn start_points<'a, R>(faces: &Faces, samples: &'a [Sample]) -> Vec<Point<'a, R>> {
-    samples
+/// Every variation at its own values, and one projector in the noise model's metric per
+/// set of parts variations do without.
+fn start_points<'a, R>(
+    faces: &Faces,
+    samples: &'a [Sample],
+) -> (Vec<Point<'a, R>>, Vec<Projector>) {
+    let mut sets: Vec<&[usize]> = Vec::new();
+    let mut projectors = Vec::new();
+    let points = samples
         .iter()
-        .map(|s| Point {
-            sample: s,
-            projector: Projector::new(faces.noise_metric(&s.optional)),
-            current: s.values.clone(),
-            original: None,
-            fidelity: 1.0,
+        .map(|s| {
+            let group = sets
+                .iter()
+                .position(|o| *o == s.optional.as_slice())
+                .unwrap_or_else(|| {
+                    sets.push(&s.optional);
+                    projectors.push(Projector::new(faces.noise_metric(&s.optional)));
+                    sets.len() - 1
+                });
+            Point {
+                sample: s,
+                group,
+                current: s.values.clone(),
+                original: None,
+                fidelity: 1.0,
+            }
         })
-        .collect()
+        .collect();
+    (points, projectors)
 }
 
 /// Runs the test to the end (every candidate taken or implied). With `sim`, the distortion
@@ -176,8 +203,8 @@ pub fn select<S: Similarity>(
     cx.size = model.size();
     let mut chosen = Chosen::new(faces);
     let mut pool = Pool::new(&vec![0; n], |i| !chosen.implies(&rows_of(candidates, i)));
-    let mut points = start_points::<S::Reference>(faces, samples);
-    let mut scores = first_scores(&cx, &pool, &mut points, &mut chosen);
+    let (mut points, mut projectors) = start_points::<S::Reference>(faces, samples);
+    let mut scores = first_scores(&cx, &pool, &points, &mut projectors, &mut chosen);
     let all: Vec<Evidence> = (0..n)
         .map(|c| scores.evidence[c].unwrap_or(Evidence { cost: 0.0, dof: 0 }))
         .collect();
@@ -211,28 +238,26 @@ pub fn select<S: Similarity>(
                     gone.push(c);
                     continue;
                 }
-                chosen.add(&rows, &mut projectors(&mut points));
+                chosen.add(&rows, &mut each(&mut projectors));
                 forget(&mut scores.evidence, &cx.by_slot, slots_of(&rows));
                 let same = out.curve.last().copied();
                 out.push(c, f64::NEG_INFINITY, f64::INFINITY, same);
             }
         } else {
-            let Some((c, odds, z)) = best(
-                &cx,
-                &noise,
-                &mut pool,
-                &mut points,
-                &mut chosen,
-                &mut scores,
-                at,
-            ) else {
+            let mut state = State {
+                points: &mut points,
+                projectors: &mut projectors,
+                chosen: &mut chosen,
+            };
+            let Some((c, odds, z)) = best(&cx, &noise, &mut pool, &mut state, &mut scores, at)
+            else {
                 break;
             };
             if odds <= 0.0 && cut.is_none() {
                 cut = Some(out.order.len());
             }
             let rows = rows_of(candidates, c);
-            let moved = move_points(&cx, &mut points, &mut chosen, &rows, sim);
+            let moved = move_points(&cx, &mut state, &rows, sim);
             for &s in &moved {
                 for &k in &cx.by_slot[s as usize] {
                     let k = k as usize;
@@ -244,7 +269,7 @@ pub fn select<S: Similarity>(
                 &cx.by_slot,
                 moved.into_iter().chain(slots_of(&rows)),
             );
-            chosen.add(&rows, &mut projectors(&mut points));
+            chosen.add(&rows, &mut each(&mut projectors));
             pool.kill(c);
             let mean = points.iter().map(|p| p.fidelity).sum::<f64>() / points.len() as f64;
             out.push(c, z, odds, sim.map(|_| 1.0 - mean));
@@ -266,7 +291,8 @@ pub fn select<S: Similarity>(
 fn first_scores<R>(
     cx: &Context<'_>,
     pool: &Pool,
-    points: &mut [Point<'_, R>],
+    points: &[Point<'_, R>],
+    projectors: &mut [Projector],
     chosen: &mut Chosen,
 ) -> Scores {
     let n = cx.candidates.list.len();
@@ -275,7 +301,7 @@ fn first_scores<R>(
         scored_at: vec![0; n],
     };
     for c in (0..n).filter(|&c| pool.is_alive(c)) {
-        scores.evidence[c] = Some(cx.evidence(c, points, chosen));
+        scores.evidence[c] = Some(cx.evidence(c, points, projectors, chosen));
     }
     scores
 }
@@ -367,15 +393,14 @@ fn best<R>(
     cx: &Context<'_>,
     noise: &NoiseModel,
     pool: &mut Pool,
-    points: &mut [Point<'_, R>],
-    chosen: &mut Chosen,
+    state: &mut State<'_, '_, R>,
     scores: &mut Scores,
     step: usize,
 ) -> Option<(usize, f64, f64)> {
     let alive: Vec<usize> = pool.members(0).collect();
     for &c in &alive {
         if scores.evidence[c].is_none() {
-            scores.evidence[c] = Some(cx.evidence(c, points, chosen));
+            scores.evidence[c] = Some(state.evidence(cx, c));
             scores.scored_at[c] = step;
         }
     }
@@ -390,7 +415,7 @@ fn best<R>(
             let z = scores.evidence[c].map_or(f64::NAN, |e| noise.z(e));
             return Some((c, odds, z));
         }
-        scores.evidence[c] = Some(cx.evidence(c, points, chosen));
+        scores.evidence[c] = Some(state.evidence(cx, c));
         scores.scored_at[c] = step;
     }
 }
@@ -402,18 +427,34 @@ fn log_odds(cx: &Context<'_>, noise: &NoiseModel, c: usize, e: Evidence) -> f64 
     cx.prior[c] + noise.log_likelihood_ratio(e, cx.size)
 }
 
+/// What a step changes: the variations' points, their projectors and the chosen rows.
+struct State<'s, 'a, R> {
+    points: &'s mut [Point<'a, R>],
+    projectors: &'s mut [Projector],
+    chosen: &'s mut Chosen,
+}
+
+impl<R> State<'_, '_, R> {
+    fn evidence(&mut self, cx: &Context<'_>, c: usize) -> Evidence {
+        cx.evidence(c, self.points, self.projectors, self.chosen)
+    }
+}
+
 /// Moves every variation onto the chosen rows plus `rows` and updates its IoU to the
 /// original. Returns the slots that moved beyond round-off in some variation.
 fn move_points<S: Similarity>(
     cx: &Context<'_>,
-    points: &mut [Point<'_, S::Reference>],
-    chosen: &mut Chosen,
+    state: &mut State<'_, '_, S::Reference>,
     rows: &[&Affine],
     sim: Option<&S>,
 ) -> Vec<u32> {
+    let mut made: Vec<Option<Projection>> = state.projectors.iter().map(|_| None).collect();
     let mut moved_any: Vec<u32> = Vec::new();
-    for p in points.iter_mut() {
-        let (shift, _) = chosen.shift(&mut p.projector, cx.faces, &p.current, rows);
+    for p in state.points.iter_mut() {
+        let projector = &mut state.projectors[p.group];
+        let projection =
+            made[p.group].get_or_insert_with(|| state.chosen.projection(projector, cx.faces, rows));
+        let (shift, _) = projector.shift_and_cost_at(projection, &p.current, rows);
         let mut moved = false;
         for (s, delta) in shift {
             p.current[s as usize] += delta;
@@ -431,9 +472,9 @@ fn move_points<S: Similarity>(
     moved_any
 }
 
-/// Every variation's projector, for [`Chosen::add`].
-fn projectors<'v, R>(points: &'v mut [Point<'_, R>]) -> Vec<&'v mut Projector> {
-    points.iter_mut().map(|p| &mut p.projector).collect()
+/// Every projector, for [`Chosen::add`].
+fn each(projectors: &mut [Projector]) -> Vec<&mut Projector> {
+    projectors.iter_mut().collect()
 }
 
 /// The slots `rows` hold.

@@ -448,8 +448,26 @@ impl Projector {
         x: &[f64],
         rows: &[&Affine],
     ) -> (Vec<(SlotId, f64)>, f64) {
+        let projection = self.projection(faces, basis, blocks, members, rows);
+        self.shift_and_cost_at(&projection, x, rows)
+    }
+
+    /// What projecting onto `rows` needs whatever the point: the columns `K nᵢᵀ` of every
+    /// block the rows touch and `(n K nᵀ)⁺`. Variations with one metric share it, so it is
+    /// worked out once for all of them ([`Projector::shift_and_cost_at`]).
+    pub fn projection(
+        &mut self,
+        faces: &Faces,
+        basis: &RowBasis,
+        blocks: &mut SlotBlocks,
+        members: &HashMap<SlotId, Vec<SlotId>>,
+        rows: &[&Affine],
+    ) -> Projection {
         if rows.is_empty() {
-            return (Vec::new(), 0.0);
+            return Projection {
+                parts: Vec::new(),
+                inverse: DMatrix::zeros(0, 0),
+            };
         }
         let mut touched: Vec<SlotId> = rows
             .iter()
@@ -474,12 +492,29 @@ impl Projector {
             }
             parts.push((root, cols));
         }
-        let e = DVector::from_fn(k, |i, _| rows[i].eval(x));
-        let lambda = linalg::pinv(&m) * &e;
+        Projection {
+            parts,
+            inverse: linalg::pinv(&m),
+        }
+    }
+
+    /// [`Projector::shift_and_cost`] of `x` with the `projection` this projector made for
+    /// `rows` (and no row chosen since).
+    pub fn shift_and_cost_at(
+        &self,
+        projection: &Projection,
+        x: &[f64],
+        rows: &[&Affine],
+    ) -> (Vec<(SlotId, f64)>, f64) {
+        if rows.is_empty() {
+            return (Vec::new(), 0.0);
+        }
+        let e = DVector::from_fn(rows.len(), |i, _| rows[i].eval(x));
+        let lambda = &projection.inverse * &e;
         let cost = e.dot(&lambda).max(0.0);
         let mut out = Vec::new();
-        for (root, cols) in parts {
-            let block = &self.blocks[&root];
+        for (root, cols) in &projection.parts {
+            let block = &self.blocks[root];
             for (i, &s) in block.slots.iter().enumerate() {
                 let delta: f64 = cols.iter().zip(lambda.iter()).map(|(c, l)| c[i] * l).sum();
                 if delta != 0.0 {
@@ -489,6 +524,14 @@ impl Projector {
         }
         (out, cost)
     }
+}
+
+/// A projection onto some rows prepared for any point (see [`Projector::projection`]).
+pub struct Projection {
+    /// Per block the rows touch (by representative): the columns `K nᵢᵀ` over its slots.
+    parts: Vec<(SlotId, Vec<Vec<f64>>)>,
+    /// `(n K nᵀ)⁺`.
+    inverse: DMatrix<f64>,
 }
 
 /// Projects `x` onto all of `rows` at once, weighting faces at `x`.

@@ -6,8 +6,7 @@
 //! the free ones. The coefficients are small rationals (±1, ±½, …); elimination runs in `f64`
 //! with partial pivoting and the results are read back as exact fractions (`Frac`).
 
-use super::anchors::anchor_rows;
-use super::gauge::gauge_rows;
+use super::anchors::Anchors;
 use super::linalg::rank;
 use super::rowbasis::RowBasis;
 use crate::ir::{Affine, Model, SlotId};
@@ -216,8 +215,9 @@ fn gauss_jordan(system: &[Affine], order: &[usize]) -> (Vec<SparseRow>, Vec<usiz
     (ordered.into_iter().map(|(_, r)| r).collect(), pivots)
 }
 
-/// Solves `rows` (affine, each `= 0`) plus the gauge and the anchors for the free slots.
-pub fn solve(model: &Model, rows: &[Affine]) -> Solution {
+/// Solves `rows` (affine, each `= 0`) plus the gauge and the anchors (the model's own,
+/// [`Anchors::of`]) for the free slots.
+pub fn solve(model: &Model, anchors: &Anchors, rows: &[Affine]) -> Solution {
     let d = model.slots.len();
     let mut basis = RowBasis::default();
     let mut system: Vec<Affine> = Vec::new();
@@ -226,16 +226,16 @@ pub fn solve(model: &Model, rows: &[Affine]) -> Solution {
             system.push(r.clone());
         }
     }
-    for r in gauge_rows(model) {
+    for r in &anchors.gauge {
         if basis.add_terms(&r.terms) {
-            system.push(r);
+            system.push(r.clone());
         }
     }
-    let mut anchors = 0;
-    for r in anchor_rows(model) {
+    let mut pinned = 0;
+    for r in anchors.rows() {
         if basis.add_terms(&r.terms) {
             system.push(r);
-            anchors += 1;
+            pinned += 1;
         }
     }
     let order = column_order(model);
@@ -284,7 +284,7 @@ pub fn solve(model: &Model, rows: &[Affine]) -> Solution {
     Solution {
         free,
         exprs,
-        anchors,
+        anchors: pinned,
     }
 }
 

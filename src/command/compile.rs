@@ -8,7 +8,7 @@
 //! file only composes them, and every decision is recorded in the [`Report`].
 
 use super::pictures::{Progress, pictures};
-use crate::analysis::anchors::project_variations;
+use crate::analysis::anchors::{Anchors, project_variations};
 use crate::analysis::candidates::{Candidate, Candidates};
 use crate::analysis::classes::sigmoid;
 use crate::analysis::contacts::common_contacts;
@@ -204,8 +204,9 @@ pub fn reparameterize_telling(
         .map(|&i| candidates.list[i].clone())
         .collect();
     let rows: Vec<Affine> = kept.iter().flat_map(|c| c.rows.iter().cloned()).collect();
-    let solution = solve(model, &rows);
-    let projected = project_variations(model, &faces, &rows, &values, &optional);
+    let anchors = Anchors::of(model);
+    let solution = solve(model, &anchors, &rows);
+    let projected = project_variations(&anchors, &faces, &rows, &values, &optional);
     // Emit: sliders, blends and switches, the file and its presets.
     let (input_free, mut variation_free) = free_values(model, &solution, &projected);
     let tolerance = Tolerance::for_size(model.size());

@@ -4,7 +4,7 @@
 //! derivative, the Gauss–Jordan solve with anchors. No noise gate, no tiers, no held-back
 //! slots of dropped parts: the row the benchmark compares the main job against.
 
-use crate::analysis::anchors::project_variations;
+use crate::analysis::anchors::{Anchors, project_variations};
 use crate::analysis::cutoff::change_points;
 use crate::analysis::discover::{Sample, discover};
 use crate::analysis::find_candidates;
@@ -47,8 +47,9 @@ pub fn paper_method(model: &Model, raw: &[Vec<f64>]) -> Output {
         .iter()
         .flat_map(|&i| candidates.list[i].rows.iter().cloned())
         .collect();
-    let solution = solve(model, &kept);
-    let projected = project_variations(model, &faces, &kept, raw, &optional);
+    let anchors = Anchors::of(model);
+    let solution = solve(model, &anchors, &kept);
+    let projected = project_variations(&anchors, &faces, &kept, raw, &optional);
     let free_at =
         |x: &[f64]| -> Vec<f64> { solution.free.iter().map(|&f| x[f as usize]).collect() };
     let input = free_at(&model.slot_values());

@@ -8,7 +8,7 @@
 //! variation share, the parts some training variation drops. Contacts are world boxes that
 //! touch or overlap within the model's tolerance.
 
-use crate::analysis::anchors::anchor_rows_at;
+use crate::analysis::anchors::Anchors;
 use crate::analysis::discover::Similarity;
 use crate::analysis::optional::optional_parts;
 use crate::analysis::project::{Faces, project_onto};
@@ -143,7 +143,7 @@ pub fn score(truth: &Truth, out: &Output, seed: u64) -> Score {
     Score {
         d: truth.d,
         dimension: out.solution.free.len(),
-        worst_iou: reach(model, &sim, &out.kept, &truth.held_out),
+        worst_iou: reach(model, &Anchors::of(model), &sim, &out.kept, &truth.held_out),
         false_toggles: out
             .toggles
             .iter()
@@ -167,8 +167,14 @@ pub fn score(truth: &Truth, out: &Output, seed: u64) -> Score {
 }
 
 /// The worst IoU of a held-out variation with its projection onto `kept` and its own
-/// anchors (parts it does without left out).
-pub fn reach(model: &Model, sim: &VolumeSimilarity, kept: &[Affine], held_out: &[Vec<f64>]) -> f64 {
+/// anchors (parts it does without left out); `anchors` are the model's.
+pub fn reach(
+    model: &Model,
+    anchors: &Anchors,
+    sim: &VolumeSimilarity,
+    kept: &[Affine],
+    held_out: &[Vec<f64>],
+) -> f64 {
     let faces = Faces::of(model);
     // Held-out variations are exact: a part is dropped when removing it changes nothing.
     let optional = optional_parts(model, held_out, sim, 0.0);
@@ -176,7 +182,7 @@ pub fn reach(model: &Model, sim: &VolumeSimilarity, kept: &[Affine], held_out: &
         .iter()
         .zip(&optional)
         .map(|(v, skip)| {
-            let own = anchor_rows_at(model, v);
+            let own = anchors.rows_at(v);
             let rows: Vec<&Affine> = kept.iter().chain(own.iter()).collect();
             let p = project_onto(&faces, v, &rows, skip);
             sim.similarity(&p, v, skip)

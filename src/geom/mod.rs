@@ -254,16 +254,17 @@ pub type Edit = (usize, Option<Part>);
 /// An edited part's new shape (`None`: removed or degenerate), by part index.
 type NewShape = (usize, Option<Shape>);
 
-/// A solid kept part by part (shapes and bounds prepared once, with its volume), so the IoU
-/// against the same solid with a few parts edited costs an integral over the edited region
-/// and the parts that meet it, not over the whole model.
+/// A solid kept part by part (shapes and bounds prepared once, its volume when first
+/// needed), so the IoU against the same solid with a few parts edited costs an integral over
+/// the edited region and the parts that meet it, not over the whole model.
 #[derive(Debug, Clone)]
 pub struct Prepared {
     parts: Vec<Part>,
     shapes: Vec<Option<Shape>>,
     boxes: Vec<Aabb>,
     csg: CsgNode,
-    volume: f64,
+    /// The solid's volume, integrated when first asked for: a removal test never needs it.
+    volume: std::sync::OnceLock<f64>,
 }
 
 impl Prepared {
@@ -273,13 +274,12 @@ impl Prepared {
             .iter()
             .map(|s| s.as_ref().map_or(Aabb::empty(), |s| Aabb::new(s.lo, s.hi)))
             .collect();
-        let volume = volume(&parts, &csg);
         Prepared {
             parts,
             shapes,
             boxes,
             csg,
-            volume,
+            volume: std::sync::OnceLock::new(),
         }
     }
 
@@ -288,7 +288,7 @@ impl Prepared {
     }
 
     pub fn volume(&self) -> f64 {
-        self.volume
+        *self.volume.get_or_init(|| volume(&self.parts, &self.csg))
     }
 
     /// IoU between this solid and the same solid with `edits` applied (the incremental IoU
@@ -297,7 +297,7 @@ impl Prepared {
         let Some((local, _)) = self.edited_overlap(edits) else {
             return 1.0;
         };
-        let outside = (self.volume - local.a).max(0.0);
+        let outside = (self.volume() - local.a).max(0.0);
         let union = outside + local.union;
         if union > 0.0 {
             ((outside + local.inter) / union).clamp(0.0, 1.0)
@@ -317,7 +317,8 @@ impl Prepared {
         let Some((local, replaced)) = self.edited_overlap(edits) else {
             return;
         };
-        self.volume = (self.volume - local.a + local.b).max(0.0);
+        let before = self.volume();
+        self.volume = std::sync::OnceLock::from((before - local.a + local.b).max(0.0));
         for (i, shape) in replaced {
             self.boxes[i] = shape
                 .as_ref()

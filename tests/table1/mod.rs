@@ -10,7 +10,7 @@
 
 #![allow(dead_code)]
 
-use reparamc::analysis::anchors::anchor_rows_at;
+use reparamc::analysis::anchors::Anchors;
 use reparamc::analysis::discover::Similarity;
 use reparamc::analysis::optional::optional_parts;
 use reparamc::analysis::project::{Faces, project_onto};
@@ -141,7 +141,8 @@ pub fn evaluate(name: &str, seed: u64) -> Row {
         })
         .flat_map(|c| c.rows.iter())
         .collect();
-    let anchors = anchor_rows_at(&model, &model.slot_values());
+    let pins = Anchors::of(&model);
+    let anchors = pins.rows();
     let mut truth = common.clone();
     truth.extend(anchors.iter());
     let clean_dimension = linalg::nullity(&truth, model.slots.len());
@@ -151,7 +152,7 @@ pub fn evaluate(name: &str, seed: u64) -> Row {
             .iter()
             .zip(&optional)
             .map(|(v, skip)| {
-                let own = anchor_rows_at(&model, v);
+                let own = pins.rows_at(v);
                 let rows: Vec<&Affine> = kept.iter().copied().chain(own.iter()).collect();
                 let p = project_onto(&faces, v, &rows, skip);
                 sim.similarity(&p, v, skip)
