@@ -173,6 +173,7 @@ impl Candidates {
         let (a, b) = (&self.features[c.a].label, &self.features[c.b].label);
         match c.kind {
             RelationKind::Symmetric if c.a == c.b => {
+                let more = more.replace(" pairs like it", " like it");
                 format!("{a} is on the model's centre plane{more}")
             }
             RelationKind::Symmetric => {

@@ -36,7 +36,7 @@ pub fn gauge_rows(model: &Model) -> Vec<Affine> {
             by_block.entry(blocks.find(s)).or_default().push(i);
         }
     }
-    let positions: Vec<bool> = model.slots.iter().map(|s| s.position).collect();
+    let positions = places_only(model, slots);
     let x0 = model.slot_values();
     let mut fixed: Vec<SlotId> = Vec::new();
     for members in by_block.values() {
@@ -58,6 +58,28 @@ pub fn gauge_rows(model: &Model) -> Vec<Affine> {
         .into_iter()
         .map(|s| Affine::slot(s).sub(&Affine::constant(x0[s as usize])))
         .collect()
+}
+
+/// Per slot: whether it only places parts (it reaches world translations and no size, no
+/// scale, no primitive argument). The slot's first use does not say: `h` in
+/// `translate([0, 0, h - 4]) … cube([w, d, h - 4])` is first a position, yet a size.
+fn places_only(model: &Model, slots: usize) -> Vec<bool> {
+    let mut places = vec![false; slots];
+    let mut shapes = vec![false; slots];
+    for p in &model.parts {
+        // The world matrix's rows are [a b c t]: every fourth number is a translation.
+        for (k, n) in p.numbers().enumerate() {
+            let translation = k < 12 && k % 4 == 3;
+            for s in n.deps() {
+                if translation {
+                    places[s as usize] = true;
+                } else {
+                    shapes[s as usize] = true;
+                }
+            }
+        }
+    }
+    places.iter().zip(&shapes).map(|(&p, &s)| p && !s).collect()
 }
 
 /// The affine part numbers (their linear parts are what a slot change moves), and which
@@ -142,4 +164,45 @@ fn fix_null_space(
         fixed.push(unknowns[j]);
     }
     fixed
+}
+
+#[cfg(test)]
+mod tests {
+    use super::gauge_rows;
+
+    fn model(text: &str) -> crate::ir::Model {
+        let mut sources = crate::front::source::SourceMap::new();
+        let path = std::path::Path::new("m.scad");
+        match crate::front::load_model_text(&mut sources, path, text.as_bytes()) {
+            Ok(e) => e.model,
+            Err(d) => panic!("{}", d.message),
+        }
+    }
+
+    /// The slots the gauge holds, by their values in the source.
+    fn held(text: &str) -> Vec<f64> {
+        let m = model(text);
+        let rows = gauge_rows(&m);
+        rows.iter()
+            .filter_map(|r| r.slots().next())
+            .map(|s| m.slots[s as usize].value)
+            .collect()
+    }
+
+    #[test]
+    fn a_number_that_sizes_parts_stays_free_over_one_that_only_places() {
+        // `h + 1` and both `4`s + 1 change nothing; `h` (first used in a translate, but
+        // sizing the legs) is the slider, the `4` that only places the top is held.
+        let text = "module b(h = 45) {\n translate([0, 0, h - 4]) cube([90, 40, 3]);\n \
+                    for (x = [0, 85]) translate([x, 0, 0]) cube([5, 5, h - 4]);\n}\nb(h = 50);\n";
+        assert_eq!(held(text), vec![4.0]);
+    }
+
+    #[test]
+    fn an_outer_translation_added_to_every_part_is_held() {
+        let text = "translate([7, 0, 0]) { translate([3, 0, 0]) cube(5); translate([9, 0, 0]) cube(5); }\n";
+        // One direction per axis changes nothing; the wrapper's numbers (7, 0, 0) are held,
+        // each part's own placement (3, 9) stays.
+        assert_eq!(held(text), vec![7.0, 0.0, 0.0]);
+    }
 }
