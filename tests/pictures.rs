@@ -413,7 +413,9 @@ fn a_long_job_shows_its_progress_on_a_terminal() {
         tty.contains(&steps),
         "no bar over discovery's steps ({steps}): {tty:?}"
     );
-    assert!(tty.contains(&format!("{n}{steps} · writing the report page")));
+    // Which later states are drawn depends on the bar's refresh rate and the machine's
+    // load (a state shorter than a refresh may never be drawn), so only the steps and the
+    // first stage are required.
     assert!(
         tty.contains("reading the model"),
         "no stage before it: {tty:?}"

@@ -136,23 +136,6 @@ fn sliders(h: &mut String, p: &PageInputs) {
     *h += "</table>\n";
 }
 
-/// The evidence of one chosen relation, in words.
-fn evidence(c: &super::report::ChosenRelation) -> String {
-    let mut parts = Vec::new();
-    if let Some(z) = c.z {
-        parts.push(format!("residuals {z:.1} noise deviations off"));
-    } else {
-        parts.push("every variation keeps it exactly".to_string());
-    }
-    if let Some(p) = c.intent_probability {
-        parts.push(format!("P(intent) = {p:.2}"));
-    }
-    if let Some(r) = c.residual {
-        parts.push(format!("largest residual {r:.3}"));
-    }
-    parts.join("; ")
-}
-
 /// What the report says of the variations' noise.
 fn noise_line(n: &NoiseModel) -> String {
     if n.exact() {
@@ -182,7 +165,7 @@ fn relations(h: &mut String, r: &Report) {
             h,
             "<li>{} <span class=\"small\">({})</span></li>",
             escape(&c.relation),
-            evidence(c)
+            c.evidence(r.noise.as_ref())
         );
     }
     *h += "</ol>\n";
@@ -222,7 +205,7 @@ fn relations(h: &mut String, r: &Report) {
             h,
             "<li class=\"left\">{} <span class=\"small\">({}) — {}</span></li>",
             escape(&c.relation),
-            evidence(c),
+            c.evidence(r.noise.as_ref()),
             escape(&why)
         );
     }

@@ -152,16 +152,11 @@ fn step_text(report: &Report, step: usize, keep: usize) -> String {
     let Some(c) = report.chosen.get(step - 1) else {
         return format!("step {step}");
     };
-    let mut s = format!("step {step}: {}", c.relation);
-    if let Some(z) = c.z {
-        s += &format!("; residuals {z:.1} noise deviations off");
-    }
-    if let Some(p) = c.intent_probability {
-        s += &format!("; P(intent) = {p:.2}");
-    }
-    if let Some(r) = c.residual {
-        s += &format!("; largest residual {r:.3}");
-    }
+    let s = format!(
+        "step {step}: {}; {}",
+        c.relation,
+        c.evidence(report.noise.as_ref())
+    );
     s + if step <= keep {
         " (kept)"
     } else {

@@ -45,6 +45,36 @@ pub struct ChosenRelation {
     pub residual: Option<f64>,
 }
 
+impl ChosenRelation {
+    /// Its evidence in words, as the page and the plot's tooltips give it. With exact
+    /// variations the statistic measures nothing but the float tolerance, so only the
+    /// largest residual (world units) is given; within the float tolerance every variation
+    /// keeps it.
+    pub fn evidence(&self, noise: Option<&NoiseModel>) -> String {
+        let exact = noise.is_some_and(NoiseModel::exact);
+        let floor = noise.map_or(0.0, |n| n.floor);
+        let mut parts = Vec::new();
+        match (self.z, self.residual) {
+            (_, Some(r)) if exact && r <= floor => {
+                parts.push("every variation keeps it exactly".to_string())
+            }
+            (_, Some(r)) if exact => {
+                parts.push(format!("the variations leave it off by up to {r:.3}"))
+            }
+            (Some(z), _) if !exact => parts.push(format!("residuals {z:.1} noise deviations off")),
+            (None, _) => parts.push("every variation keeps it exactly".to_string()),
+            _ => {}
+        }
+        if let Some(p) = self.intent_probability.filter(|_| !exact) {
+            parts.push(format!("P(intent) = {p:.2}"));
+        }
+        if let Some(r) = self.residual.filter(|_| !exact) {
+            parts.push(format!("largest residual {r:.3}"));
+        }
+        parts.join("; ")
+    }
+}
+
 #[derive(Debug, Clone, Serialize)]
 pub struct Report {
     pub model: String,
@@ -91,5 +121,46 @@ impl Report {
                 format!(", {} part switches", self.toggles.len())
             }
         )
+    }
+}
+
+#[cfg(test)]
+mod evidence_tests {
+    use super::ChosenRelation;
+    use crate::analysis::noise::{Evidence, NoiseModel};
+
+    fn relation(z: f64, residual: f64) -> ChosenRelation {
+        ChosenRelation {
+            relation: "a equals b".into(),
+            z: Some(z),
+            intent_probability: Some(0.9),
+            residual: Some(residual),
+        }
+    }
+
+    #[test]
+    fn exact_variations_give_residuals_in_world_units_not_deviations() {
+        let exact = NoiseModel::estimate(&[Evidence { cost: 0.0, dof: 3 }; 20], 1e-6, 1e6);
+        let kept = relation(0.1, 0.0).evidence(Some(&exact));
+        assert_eq!(kept, "every variation keeps it exactly");
+        let broken = relation(4e6, 2.0).evidence(Some(&exact));
+        assert_eq!(broken, "the variations leave it off by up to 2.000");
+    }
+
+    #[test]
+    fn noisy_variations_give_the_statistic_and_the_odds() {
+        let costs: Vec<Evidence> = (0..40)
+            .map(|k| Evidence {
+                cost: 0.5 + 0.05 * k as f64,
+                dof: 2,
+            })
+            .collect();
+        let noisy = NoiseModel::estimate(&costs, 1e-6, 1e6);
+        assert!(!noisy.exact(), "{noisy:?}");
+        let text = relation(1.25, 0.8).evidence(Some(&noisy));
+        assert_eq!(
+            text,
+            "residuals 1.2 noise deviations off; P(intent) = 0.90; largest residual 0.800"
+        );
     }
 }

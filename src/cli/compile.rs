@@ -53,9 +53,13 @@ fn progress_bar() -> (ProgressBar, Progress) {
     if let Ok(style) = ProgressStyle::with_template(STAGE_TEMPLATE) {
         bar.set_style(style);
     }
-    if std::io::stderr().is_terminal() {
+    let quiet = quiet_for();
+    if std::io::stderr().is_terminal() && quiet.is_zero() {
+        // Told to show at once: drawn from the first stage on, not when a thread wakes.
+        bar.set_draw_target(ProgressDrawTarget::stderr());
+        bar.enable_steady_tick(Duration::from_millis(120));
+    } else if std::io::stderr().is_terminal() {
         let later = bar.clone();
-        let quiet = quiet_for();
         std::thread::spawn(move || {
             std::thread::sleep(quiet);
             if !later.is_finished() {
