@@ -117,6 +117,13 @@ fn plot_svg_names_its_axes_and_gives_each_step_its_relation() {
         svg.contains(&format!("Cutoff at {keep}:")),
         "the reason is written"
     );
+    // The title's count is of the relations tested (the rest were implied), so it is
+    // not mistaken for the summary's count of every relation that holds.
+    let tested = report.distortion_curve.len() - 1;
+    assert!(
+        svg.contains(&format!("{keep} of the {tested} tested kept")),
+        "the title says what it counts"
+    );
     assert_eq!(svg.matches("<title>").count(), report.chosen.len());
     for (s, c) in report.chosen.iter().enumerate() {
         let tip = format!("<title>step {}: {}", s + 1, escape(&c.relation));

@@ -180,7 +180,7 @@ fn draw<DB: DrawingBackend>(
     let title = if n == 0 {
         "Distortion: no variations, so no curve".to_string()
     } else {
-        format!("Distortion as relations are kept: {keep} of {n} kept")
+        format!("Distortion as relations are kept: {keep} of the {n} tested kept")
     };
     let mut chart = ChartBuilder::on(&chart_area)
         .caption(title, (FAMILY, 22))
