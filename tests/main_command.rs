@@ -124,18 +124,6 @@ fn defaults_reproduce_the_input_for_every_example() {
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
-/// A tiny deterministic generator (xorshift), so the settings are the same on every run.
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
-
 /// Every kept relation's residual on OpenSCAD's parts, and every size.
 fn check_setting(
     cands: &Candidates,

@@ -13,21 +13,9 @@ use reparamc::front::source::SourceMap;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-/// A tiny deterministic generator (xorshift), so every run draws the same models.
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    /// A number in `[lo, hi]` rounded to a tenth, as people type them.
-    fn typed(&mut self, lo: f64, hi: f64) -> f64 {
-        ((lo + self.next() * (hi - lo)) * 10.0).round() / 10.0
-    }
+/// A number in `[lo, hi]` rounded to a tenth, as people type them.
+fn typed(rng: &mut Rng, lo: f64, hi: f64) -> f64 {
+    ((lo + rng.next() * (hi - lo)) * 10.0).round() / 10.0
 }
 
 /// `x` as OpenSCAD text, without float noise.
@@ -41,13 +29,13 @@ fn num(x: f64) -> String {
 /// back right).
 fn table(rng: &mut Rng) -> String {
     let (w, d, t) = (
-        rng.typed(40.0, 120.0),
-        rng.typed(30.0, 80.0),
-        rng.typed(2.0, 6.0),
+        typed(rng, 40.0, 120.0),
+        typed(rng, 30.0, 80.0),
+        typed(rng, 2.0, 6.0),
     );
-    let (l, h) = (rng.typed(3.0, 8.0), rng.typed(30.0, 80.0));
-    let (ix, iy) = (rng.typed(1.0, 10.0), rng.typed(1.0, 10.0));
-    let (ox, oy) = (rng.typed(-50.0, 50.0), rng.typed(-50.0, 50.0));
+    let (l, h) = (typed(rng, 3.0, 8.0), typed(rng, 30.0, 80.0));
+    let (ix, iy) = (typed(rng, 1.0, 10.0), typed(rng, 1.0, 10.0));
+    let (ox, oy) = (typed(rng, -50.0, 50.0), typed(rng, -50.0, 50.0));
     let round = rng.next() < 0.4;
     let mut s = format!(
         "translate([{}, {}, {}]) cube([{}, {}, {}]);\n",
@@ -87,10 +75,10 @@ fn table(rng: &mut Rng) -> String {
 /// Parts 0–2 are the carcass; the shelves follow, lowest first.
 fn shelves(rng: &mut Rng) -> (String, usize) {
     let (w, d, gap, t) = (
-        rng.typed(40.0, 90.0),
-        rng.typed(20.0, 40.0),
-        rng.typed(15.0, 40.0),
-        rng.typed(1.5, 3.0),
+        typed(rng, 40.0, 90.0),
+        typed(rng, 20.0, 40.0),
+        typed(rng, 15.0, 40.0),
+        typed(rng, 1.5, 3.0),
     );
     let n = 3 + (rng.next() * 3.0) as usize;
     let h = gap * (n as f64 + 1.0) + t;

@@ -169,15 +169,7 @@ fn fix_null_space(
 #[cfg(test)]
 mod tests {
     use super::gauge_rows;
-
-    fn model(text: &str) -> crate::ir::Model {
-        let mut sources = crate::front::source::SourceMap::new();
-        let path = std::path::Path::new("m.scad");
-        match crate::front::load_model_text(&mut sources, path, text.as_bytes()) {
-            Ok(e) => e.model,
-            Err(d) => panic!("{}", d.message),
-        }
-    }
+    use crate::front::test_model as model;
 
     /// The slots the gauge holds, by their values in the source.
     fn held(text: &str) -> Vec<f64> {

@@ -257,15 +257,7 @@ fn repeat_groups(
 mod tests {
     use crate::analysis::RelationKind;
     use crate::analysis::find_candidates;
-
-    fn model(text: &str) -> crate::ir::Model {
-        let mut sources = crate::front::source::SourceMap::new();
-        let path = std::path::Path::new("m.scad");
-        match crate::front::load_model_text(&mut sources, path, text.as_bytes()) {
-            Ok(e) => e.model,
-            Err(d) => panic!("{}", d.message),
-        }
-    }
+    use crate::front::test_model as model;
 
     #[test]
     fn shelves_at_equal_gaps_are_spaced() {

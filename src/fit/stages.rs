@@ -147,13 +147,7 @@ pub fn scale_basis(model: &Model) -> DMatrix<f64> {
 mod tests {
     use super::*;
 
-    fn model(src: &str) -> Model {
-        let mut sources = crate::front::source::SourceMap::new();
-        crate::front::load_model_text(&mut sources, std::path::Path::new("t.scad"), src.as_bytes())
-            .map_err(|d| d.message)
-            .unwrap()
-            .model
-    }
+    use crate::front::test_model as model;
 
     #[test]
     fn lengths_scale_along_their_axes() {

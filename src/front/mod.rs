@@ -96,3 +96,13 @@ pub fn load_model_text(sources: &mut SourceMap, path: &Path, text: &[u8]) -> DRe
         eval::evaluate(sources, &loaded)
     })
 }
+
+/// The model of `text` for unit tests; a diagnostic fails the test with its message.
+#[cfg(test)]
+pub(crate) fn test_model(text: &str) -> crate::ir::Model {
+    let mut sources = SourceMap::new();
+    match load_model_text(&mut sources, Path::new("t.scad"), text.as_bytes()) {
+        Ok(e) => e.model,
+        Err(d) => panic!("{}", d.message),
+    }
+}

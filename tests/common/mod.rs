@@ -292,3 +292,16 @@ pub fn compare_parts(ours: &[CsgPart], theirs: &[CsgPart]) -> Vec<String> {
     }
     errs
 }
+
+/// A tiny deterministic generator (xorshift), so settings and drawn models are the same on
+/// every run.
+pub struct Rng(pub u64);
+
+impl Rng {
+    pub fn next(&mut self) -> f64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
