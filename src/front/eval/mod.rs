@@ -381,7 +381,8 @@ fn draws_nothing(sources: &SourceMap, loaded: &Loaded, warnings: &[Diagnostic]) 
 }
 
 impl Eval<'_> {
-    /// Asks to freeze the inner factor of every product inside a relation's feature.
+    /// Asks to freeze the inner factor of every product inside a relation's feature or a
+    /// part's own numbers.
     fn freeze_products(&mut self) {
         let mut asks = Vec::new();
         for (i, part) in self.parts.iter().enumerate() {
@@ -392,6 +393,11 @@ impl Eval<'_> {
                 for n in &f.nums {
                     asks.extend(n.freeze_to_make_affine().iter().copied());
                 }
+            }
+            // The numbers a part is made of (its matrix and its primitive's sizes) must be
+            // affine too, or the part cannot be evaluated at another setting of the slots.
+            for n in part.numbers() {
+                asks.extend(n.freeze_to_make_affine().iter().copied());
             }
         }
         asks.sort_unstable();
