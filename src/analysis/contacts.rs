@@ -17,12 +17,14 @@ use crate::ir::{Affine, Model};
 #[derive(Debug, Clone)]
 pub struct ContactSide {
     pub parts: [usize; 2],
+    pub axis: u8,
     pub form: Affine,
 }
 
 /// Every side of every contact present in the input and in each variation that keeps both
-/// parts (`skipped[v]` lists the parts variation `v` does without), a gap up to `slack`
-/// (world units) counting as touching.
+/// parts (`skipped[v]` lists the parts variation `v` does without). In a variation a gap up
+/// to `slack` (world units, what its noise explains) counts as touching; the input is
+/// exact, so there only a gap within the model's tolerance does.
 pub fn common_contacts(
     model: &Model,
     variations: &[Vec<f64>],
@@ -30,6 +32,7 @@ pub fn common_contacts(
     slack: f64,
 ) -> Vec<ContactSide> {
     let x0 = model.slot_values();
+    let exact = crate::tolerance::Tolerance::for_size(model.size()).epsilon;
     let boxes: Vec<Option<[(Affine, Affine); 3]>> = model
         .parts
         .iter()
@@ -48,23 +51,27 @@ pub fn common_contacts(
         let Some(ba) = &boxes[a] else { continue };
         for (b, bb) in boxes.iter().enumerate().skip(a + 1) {
             let Some(bb) = bb else { continue };
-            let sides: Vec<Affine> = (0..3)
-                .flat_map(|k| [ba[k].1.sub(&bb[k].0), bb[k].1.sub(&ba[k].0)])
+            let sides: Vec<(u8, Affine)> = (0..3u8)
+                .flat_map(|k| {
+                    let k_ = k as usize;
+                    [(k, ba[k_].1.sub(&bb[k_].0)), (k, bb[k_].1.sub(&ba[k_].0))]
+                })
                 .collect();
-            let meets = |x: &[f64]| sides.iter().all(|f| f.eval(x) >= -slack);
-            let kept = meets(&x0)
+            let meets = |x: &[f64], gap: f64| sides.iter().all(|(_, f)| f.eval(x) >= -gap);
+            let kept = meets(&x0, exact)
                 && variations
                     .iter()
                     .zip(skipped)
                     .filter(|(_, skip)| !skip.contains(&a) && !skip.contains(&b))
-                    .all(|(v, _)| meets(v));
+                    .all(|(v, _)| meets(v, slack));
             if kept {
-                out.extend(sides.into_iter().filter(|f| !f.is_constant()).map(|form| {
-                    ContactSide {
+                out.extend(sides.into_iter().filter(|(_, f)| !f.is_constant()).map(
+                    |(axis, form)| ContactSide {
                         parts: [a, b],
+                        axis,
                         form,
-                    }
-                }));
+                    },
+                ));
             }
         }
     }

@@ -9,7 +9,8 @@
 //! IoU and `cutoff` its change points on the distortion curve; `reparam` solves
 //! them for a few free variables, `anchors` pins the model in place, `gauge` holds slot
 //! changes that change no part, and `project` reads the
-//! variations on the kept relations; `names` and `ranges` make the sliders, keeping the `contacts` the variations keep. `similarity` is
+//! variations on the kept relations; `names` and `ranges` make the sliders, keeping the `contacts` the variations keep
+//! (`contact_vars` makes a contact a slider of its own where a box of ranges cannot keep it). `similarity` is
 //! the model's IoU between two settings (exact volumes, from `geom`); `linalg`, `rowbasis`,
 //! `slotblocks`, `chosen` and `pool` are the shared machinery. Floats are compared only against
 //! `crate::tolerance`.
@@ -18,6 +19,7 @@ pub mod anchors;
 pub mod candidates;
 pub mod chosen;
 pub mod classes;
+pub mod contact_vars;
 pub mod contacts;
 pub mod cutoff;
 pub mod discover;

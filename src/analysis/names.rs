@@ -15,7 +15,7 @@
 pub mod roles;
 
 use super::optional::Toggle;
-use super::reparam::Solution;
+use super::reparam::{ContactVariable, Solution};
 use crate::front::ast::{Expr, ExprKind, InstanceKind, Stmt, StmtKind};
 use crate::front::load::Loaded;
 use crate::front::walk::{Visitor, visit_stmts};
@@ -304,6 +304,8 @@ struct Draft {
     /// try before order words.
     source: Vec<String>,
     owners: Vec<String>,
+    /// A description that says what the variable is in other words than its role's.
+    said: Option<String>,
 }
 
 impl Draft {
@@ -326,6 +328,9 @@ impl Draft {
     }
 
     fn description(&self, name: &str) -> String {
+        if let Some(said) = &self.said {
+            return said.clone();
+        }
         let role = role_words(&self.role);
         if let Some(v) = &self.variable {
             return format!("{role} ({v} in the model)");
@@ -362,6 +367,9 @@ fn drafts(model: &Model, sol: &Solution) -> Vec<Draft> {
         .iter()
         .enumerate()
         .map(|(i, &f)| {
+            if let Some(c) = sol.contact(i) {
+                return contact_draft(model, &labels, c);
+            }
             let slot = &model.slots[f as usize];
             let (_, role) = split_name(&slot.name);
             let role = without_counter(role);
@@ -402,9 +410,39 @@ fn drafts(model: &Model, sol: &Solution) -> Vec<Draft> {
                     .map(|w| w.to_string())
                     .collect(),
                 owners,
+                said: None,
             }
         })
         .collect()
+}
+
+/// A part's words: its own name where it says something, else its role and place.
+fn part_words(model: &Model, labels: &[Label], p: usize) -> String {
+    let name = &model.parts[p].name;
+    if says_nothing(name, whole_model_name(model).as_deref()) {
+        labels[p].words().join("_")
+    } else {
+        words(without_counter(name)).join("_")
+    }
+}
+
+/// A contact variable: how far the part it places overlaps the other, along an axis.
+fn contact_draft(model: &Model, labels: &[Label], c: &ContactVariable) -> Draft {
+    let [moved, other] = c.parts.map(|p| part_words(model, labels, p));
+    let axis = ["x", "y", "z"][c.axis as usize];
+    Draft {
+        variable: None,
+        prefix: vec![moved.clone(), other.clone()],
+        role: format!("overlap_{axis}"),
+        place: common_place(labels, &[c.parts[0]]),
+        source: Vec::new(),
+        owners: vec![moved.clone()],
+        said: Some(format!(
+            "How far the {} and the {} overlap along {axis} (0 = just touching)",
+            moved.replace('_', " "),
+            other.replace('_', " ")
+        )),
+    }
 }
 
 /// Names for `sol.free`, avoiding every name in `taken`.

@@ -52,7 +52,7 @@ pub fn size_forms(model: &Model) -> Vec<Affine> {
 }
 
 /// A size in terms of the free variables: `(constant, coefficient per free variable)`.
-fn in_free(form: &Affine, sol: &Solution) -> (f64, Vec<f64>) {
+pub(crate) fn in_free(form: &Affine, sol: &Solution) -> (f64, Vec<f64>) {
     let mut c = form.constant;
     let mut coeffs = vec![0.0; sol.free.len()];
     for &(s, a) in &form.terms {

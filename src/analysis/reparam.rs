@@ -78,12 +78,41 @@ pub struct Solution {
     pub exprs: Vec<Expression>,
     /// How many anchor rows were added (rigid moves removed).
     pub anchors: usize,
+    /// Free variables that are a contact's depth rather than a slot (`contact_vars`); the
+    /// slot at their index in `free` is the one they took the place of.
+    pub contacts: Vec<ContactVariable>,
+}
+
+/// A free variable that measures how far two parts overlap along an axis: the contact
+/// side's form (`form ≥ 0` keeps them touching), over slots.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ContactVariable {
+    /// Its index among the free variables.
+    pub index: usize,
+    /// The part the replaced slot moved, then the other one.
+    pub parts: [usize; 2],
+    pub axis: u8,
+    pub form: Affine,
 }
 
 impl Solution {
     /// Slot values for the free variables' values.
     pub fn slot_values(&self, free: &[f64]) -> Vec<f64> {
         self.exprs.iter().map(|e| e.eval(free)).collect()
+    }
+
+    /// The free variables' values at slot values `x`.
+    pub fn free_values(&self, x: &[f64]) -> Vec<f64> {
+        let mut out: Vec<f64> = self.free.iter().map(|&f| x[f as usize]).collect();
+        for c in &self.contacts {
+            out[c.index] = c.form.eval(x);
+        }
+        out
+    }
+
+    /// The contact variable at free index `i`, if it is one.
+    pub fn contact(&self, i: usize) -> Option<&ContactVariable> {
+        self.contacts.iter().find(|c| c.index == i)
     }
 }
 
@@ -285,6 +314,7 @@ pub fn solve(model: &Model, anchors: &Anchors, rows: &[Affine]) -> Solution {
         free,
         exprs,
         anchors: pinned,
+        contacts: Vec::new(),
     }
 }
 

@@ -11,6 +11,7 @@ use super::pictures::{Progress, pictures};
 use crate::analysis::anchors::{Anchors, project_variations};
 use crate::analysis::candidates::{Candidate, Candidates};
 use crate::analysis::classes::sigmoid;
+use crate::analysis::contact_vars::make_one_contact_variable;
 use crate::analysis::contacts::common_contacts;
 use crate::analysis::cutoff::{Cutoff, change_points};
 use crate::analysis::discover::{Sample, Similarity};
@@ -205,20 +206,33 @@ pub fn reparameterize_telling(
         .collect();
     let rows: Vec<Affine> = kept.iter().flat_map(|c| c.rows.iter().cloned()).collect();
     let anchors = Anchors::of(model);
-    let solution = solve(model, &anchors, &rows);
+    let mut solution = solve(model, &anchors, &rows);
     let projected = project_variations(&anchors, &faces, &rows, &values, &optional);
     // Emit: sliders, blends and switches, the file and its presets.
-    let (input_free, mut variation_free) = free_values(model, &solution, &projected);
     let tolerance = Tolerance::for_size(model.size());
     let contacts = common_contacts(model, &raw, &optional, contact_slack(&choice, tolerance));
-    let slider_ranges = ranges(
-        model,
-        &solution,
-        &input_free,
-        &variation_free,
-        &contacts,
-        tolerance.epsilon,
-    );
+    let (input_free, mut variation_free, slider_ranges) = loop {
+        let (input_free, variation_free) = free_values(model, &solution, &projected);
+        let slider_ranges = ranges(
+            model,
+            &solution,
+            &input_free,
+            &variation_free,
+            &contacts,
+            tolerance.epsilon,
+        );
+        // A contact the box cannot keep becomes a slider of its own, then the ranges again.
+        if !make_one_contact_variable(
+            model,
+            &mut solution,
+            &contacts,
+            &input_free,
+            &slider_ranges,
+            tolerance.epsilon,
+        ) {
+            break (input_free, variation_free, slider_ranges);
+        }
+    };
     // Presets are the projected variations inside the ranges: every size positive and
     // every kept contact closed there too.
     for v in &mut variation_free {
@@ -377,8 +391,7 @@ fn free_values(
     solution: &Solution,
     projected: &[Vec<f64>],
 ) -> (Vec<f64>, Vec<Vec<f64>>) {
-    let free_at =
-        |x: &[f64]| -> Vec<f64> { solution.free.iter().map(|&f| x[f as usize]).collect() };
+    let free_at = |x: &[f64]| solution.free_values(x);
     let input = free_at(&model.slot_values());
     let quantum = 10f64.powf((model.size().max(MIN_DISPLAY_SIZE)).log10().floor() - 6.0);
     let tidy = |v: f64| (v / quantum).round() * quantum;
@@ -412,9 +425,19 @@ fn report(o: &Outcome, choice: Choice) -> Report {
         .sliders
         .iter()
         .zip(&o.solution.free)
-        .map(|(s, &slot)| FreeVariableReport {
+        .enumerate()
+        .map(|(i, (s, &slot))| FreeVariableReport {
             name: s.name.clone(),
-            slot: model.slots[slot as usize].name.clone(),
+            slot: match o.solution.contact(i) {
+                Some(c) => format!(
+                    "overlap of {} and {} along {} (in place of {})",
+                    model.parts[c.parts[0]].name,
+                    model.parts[c.parts[1]].name,
+                    ["x", "y", "z"][c.axis as usize],
+                    model.slots[slot as usize].name
+                ),
+                None => model.slots[slot as usize].name.clone(),
+            },
             description: s.description.clone(),
             value: s.value,
             range: s.range,

@@ -50,8 +50,7 @@ pub fn paper_method(model: &Model, raw: &[Vec<f64>]) -> Output {
     let anchors = Anchors::of(model);
     let solution = solve(model, &anchors, &kept);
     let projected = project_variations(&anchors, &faces, &kept, raw, &optional);
-    let free_at =
-        |x: &[f64]| -> Vec<f64> { solution.free.iter().map(|&f| x[f as usize]).collect() };
+    let free_at = |x: &[f64]| solution.free_values(x);
     let input = free_at(&model.slot_values());
     let variation_free: Vec<Vec<f64>> = projected.iter().map(|p| free_at(p)).collect();
     // Sizes kept positive, no contacts (the paper has no ranges of its own).

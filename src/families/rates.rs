@@ -10,7 +10,8 @@ pub struct Rates {
     pub reach: f64,
     pub coherence: f64,
     pub dim_within_d: f64,
-    pub dim_within_paper: f64,
+    /// `None` when the paper's method was not run on these families.
+    pub dim_within_paper: Option<f64>,
     pub no_false_toggle: f64,
     /// Over the families some training variation of which drops a part.
     pub optional_found: f64,
@@ -53,7 +54,11 @@ pub fn rates(results: &[FamilyResult], pick: impl Fn(&FamilyResult) -> &Score) -
         reach: percent(count(&|r| pick(r).reached()), n),
         coherence: percent(count(&|r| pick(r).coherent()), n),
         dim_within_d: percent(count(&|r| pick(r).dimension <= pick(r).d + 1), n),
-        dim_within_paper: percent(count(&|r| pick(r).dimension <= r.paper.dimension + 1), n),
+        // A score of a method that ran has an intent dimension (the generator's d ≥ 3).
+        dim_within_paper: results
+            .iter()
+            .all(|r| r.paper.d > 0)
+            .then(|| percent(count(&|r| pick(r).dimension <= r.paper.dimension + 1), n)),
         no_false_toggle: percent(count(&|r| pick(r).false_toggles.is_empty()), n),
         optional_found: percent(found, with_optional.len()),
         optional_families: with_optional.len(),
@@ -74,12 +79,13 @@ pub fn header() -> String {
 /// One row of the table.
 pub fn row(condition: &str, method: &str, r: &Rates) -> String {
     format!(
-        "| {condition} | {method} | {} | {:.1}% | {:.1}% | {:.1}% | {:.1}% | {:.1}% | {:.1}% ({}) | {:.1}% | {:.2} / {:.2} | {:.3} |\n",
+        "| {condition} | {method} | {} | {:.1}% | {:.1}% | {:.1}% | {} | {:.1}% | {:.1}% ({}) | {:.1}% | {:.2} / {:.2} | {:.3} |\n",
         r.families,
         r.reach,
         r.coherence,
         r.dim_within_d,
-        r.dim_within_paper,
+        r.dim_within_paper
+            .map_or_else(|| "–".to_string(), |p| format!("{p:.1}%")),
         r.no_false_toggle,
         r.optional_found,
         r.optional_families,

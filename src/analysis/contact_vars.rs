@@ -1,0 +1,219 @@
+//! Contacts the box of slider ranges cannot keep, made sliders of their own.
+//!
+//! A contact side (`contacts`) is an affine form of the free variables that must stay
+//! `≥ −slack`. When it involves one free variable, the slider's range keeps it exactly. When
+//! it involves several (a top's height and a leg's height, neither tied to the other by a
+//! kept relation), a box of ranges that holds every preset has corners where the parts come
+//! apart, and shrinking the box would cut presets off. The principled way out is a change
+//! of basis: the side's form becomes a free variable itself (how far the two parts overlap
+//! along that axis), in place of a free variable that only places one of the two parts;
+//! then the box keeps it like any size. The model's numbers at every setting are the same
+//! affine family as before: only the coordinates the sliders show change.
+//!
+//! Invariants: a replaced variable only moves parts (sets no size) and is not already a
+//! contact variable; the substitution keeps every slot's expression exact (coefficients are
+//! read back as small fractions like the solve's); one side is made a variable per call.
+
+use super::contacts::ContactSide;
+use super::ranges::{Range, in_free, size_forms};
+use super::reparam::{ContactVariable, Frac, Solution};
+use crate::ir::Model;
+use crate::tolerance::COEFFICIENT_ZERO;
+
+/// The side's smallest value over the box of ranges.
+fn box_min(c: f64, a: &[f64], ranges: &[Range]) -> f64 {
+    c + a
+        .iter()
+        .zip(ranges)
+        .map(|(&k, r)| (k * r.min).min(k * r.max))
+        .sum::<f64>()
+}
+
+/// Free variables that set no size of any part (they only move parts).
+fn positions(model: &Model, sol: &Solution) -> Vec<bool> {
+    let mut out = vec![true; sol.free.len()];
+    for f in size_forms(model) {
+        let (_, a) = in_free(&f, sol);
+        for (o, k) in out.iter_mut().zip(a) {
+            if k.abs() > COEFFICIENT_ZERO {
+                *o = false;
+            }
+        }
+    }
+    out
+}
+
+/// Which of the side's two parts free variable `j` moves (the first that depends on it).
+fn moved_part(model: &Model, sol: &Solution, side: &ContactSide, j: usize) -> Option<usize> {
+    side.parts.into_iter().find(|&p| {
+        model.parts[p]
+            .slot_deps()
+            .into_iter()
+            .any(|s| sol.exprs[s as usize].terms.iter().any(|&(i, _)| i == j))
+    })
+}
+
+/// Makes the contact side most broken over the box of `ranges` (at values `input` of the
+/// free variables, a side may start below zero by `slack`) a free variable, if one is
+/// broken and some free variable of it only places a part. Returns whether it did.
+pub fn make_one_contact_variable(
+    model: &Model,
+    sol: &mut Solution,
+    contacts: &[ContactSide],
+    input: &[f64],
+    ranges: &[Range],
+    slack: f64,
+) -> bool {
+    let places = positions(model, sol);
+    let mut worst: Option<(f64, usize, usize)> = None;
+    for (k, side) in contacts.iter().enumerate() {
+        let (c, a) = in_free(&side.form, sol);
+        let live: Vec<usize> = (0..a.len())
+            .filter(|&i| a[i].abs() > COEFFICIENT_ZERO)
+            .collect();
+        if live.len() < 2 {
+            continue;
+        }
+        let at_input = c + a.iter().zip(input).map(|(x, y)| x * y).sum::<f64>();
+        let deficit = at_input.min(0.0) - slack - box_min(c, &a, ranges);
+        // The variable to replace: one that only places a part, the last shown.
+        let Some(&j) = live
+            .iter()
+            .rev()
+            .find(|&&i| places[i] && sol.contact(i).is_none())
+        else {
+            continue;
+        };
+        if deficit > 0.0 && worst.is_none_or(|(d, _, _)| deficit > d) {
+            worst = Some((deficit, k, j));
+        }
+    }
+    let Some((_, k, j)) = worst else {
+        return false;
+    };
+    let side = &contacts[k];
+    let Some(moved) = moved_part(model, sol, side, j) else {
+        return false;
+    };
+    let other = if side.parts[0] == moved {
+        side.parts[1]
+    } else {
+        side.parts[0]
+    };
+    substitute(sol, &in_free(&side.form, sol), j);
+    sol.contacts.push(ContactVariable {
+        index: j,
+        parts: [moved, other],
+        axis: side.axis,
+        form: side.form.clone(),
+    });
+    true
+}
+
+/// Rewrites every slot's expression with free variable `j` replaced by `w = c + a·u`:
+/// `u_j = (w − c − Σ_{i≠j} a_i u_i) / a_j`.
+fn substitute(sol: &mut Solution, (c, a): &(f64, Vec<f64>), j: usize) {
+    let snap = |x: f64| Frac::near(x).map_or(x, |f| f.value());
+    let aj = a[j];
+    for e in &mut sol.exprs {
+        let Some(t) = e.terms.iter().find(|&&(i, _)| i == j).map(|&(_, t)| t) else {
+            continue;
+        };
+        let mut dense = vec![0.0; a.len()];
+        for &(i, v) in &e.terms {
+            if i != j {
+                dense[i] = v;
+            }
+        }
+        for (i, &ai) in a.iter().enumerate() {
+            if i != j {
+                dense[i] -= t * ai / aj;
+            }
+        }
+        dense[j] = t / aj;
+        e.constant -= t * c / aj;
+        e.terms = dense
+            .into_iter()
+            .enumerate()
+            .map(|(i, v)| (i, snap(v)))
+            .filter(|&(_, v)| v.abs() > COEFFICIENT_ZERO)
+            .collect();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::analysis::anchors::Anchors;
+    use crate::analysis::contacts::common_contacts;
+    use crate::analysis::ranges::ranges;
+    use crate::analysis::reparam::solve;
+    use crate::ir::feature::world_intervals;
+
+    /// A top sunk 1 unit into a leg, no relation kept between the leg's height and the
+    /// top's place, and a variation with both 20 higher: a box holding the input and the
+    /// variation has a corner where the top floats, until the overlap is a slider. Then at
+    /// every corner the two touch, and the input and the variation are where they were.
+    #[test]
+    fn a_sunk_top_stays_on_its_leg_at_every_corner() {
+        let model = crate::front::test_model(
+            "cube([10, 10, 50]);\ntranslate([0, 0, 49]) cube([40, 40, 2]);\n",
+        );
+        let x0 = model.slot_values();
+        let x1: Vec<f64> = x0
+            .iter()
+            .map(|&v| if v == 50.0 || v == 49.0 { v + 20.0 } else { v })
+            .collect();
+        let mut sol = solve(&model, &Anchors::of(&model), &[]);
+        let contacts = common_contacts(&model, std::slice::from_ref(&x1), &[vec![]], 0.0);
+        let eps = crate::tolerance::Tolerance::for_size(model.size()).epsilon;
+        let mut made = 0;
+        let box_of = |sol: &Solution| {
+            let input = sol.free_values(&x0);
+            let v = sol.free_values(&x1);
+            let r = ranges(&model, sol, &input, &[v], &contacts, eps);
+            (input, r)
+        };
+        loop {
+            let (input, r) = box_of(&sol);
+            if !make_one_contact_variable(&model, &mut sol, &contacts, &input, &r, eps) {
+                break;
+            }
+            made += 1;
+        }
+        assert!(made >= 1, "no contact variable was made");
+        let (input, r) = box_of(&sol);
+        for x in [&x0, &x1] {
+            let back = sol.slot_values(&sol.free_values(x));
+            for (a, b) in back.iter().zip(x.iter()) {
+                assert!((a - b).abs() < 1e-9, "a setting moved: {back:?} vs {x:?}");
+            }
+        }
+        let _ = input;
+        let n = r.len();
+        for corner in 0..(1u32 << n) {
+            let free: Vec<f64> = (0..n)
+                .map(|i| {
+                    if corner >> i & 1 == 1 {
+                        r[i].max
+                    } else {
+                        r[i].min
+                    }
+                })
+                .collect();
+            let x = sol.slot_values(&free);
+            let at = |p: usize| {
+                world_intervals(&model.parts[p])
+                    .unwrap()
+                    .map(|(lo, hi)| (lo.affine().unwrap().eval(&x), hi.affine().unwrap().eval(&x)))
+            };
+            let (leg, top) = (at(0), at(1));
+            for k in 0..3 {
+                assert!(
+                    leg[k].1 >= top[k].0 - eps && top[k].1 >= leg[k].0 - eps,
+                    "corner {free:?}: apart along {k}: {leg:?} {top:?}"
+                );
+            }
+        }
+    }
+}
