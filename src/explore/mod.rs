@@ -11,5 +11,6 @@
 //! below `command`. Unlike the layers below it, it writes files as it goes (the run
 //! folder), always through [`crate::output::write_atomic`]; HTTP is `ureq`'s ([`net`]).
 
+pub mod diffusion;
 pub mod llm;
 pub mod net;
