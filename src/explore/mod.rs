@@ -14,3 +14,5 @@
 pub mod diffusion;
 pub mod llm;
 pub mod net;
+pub mod rounds;
+pub mod run;
