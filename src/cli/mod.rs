@@ -4,6 +4,7 @@
 //! helpers and the exit codes. Nothing here computes results: it calls the library.
 
 mod compile;
+mod explore;
 mod fit;
 mod inspect;
 mod render;
@@ -19,6 +20,8 @@ use std::process::ExitCode;
 pub const EXIT_MODEL_ERROR: u8 = 1;
 /// Exit code for a failure to write output.
 pub const EXIT_IO_ERROR: u8 = 3;
+/// Exit code for a server (language model, img2img) that failed or answered wrongly.
+pub const EXIT_SERVER_ERROR: u8 = 4;
 
 #[derive(Parser)]
 #[command(
@@ -43,6 +46,9 @@ enum Command {
     Render(render::Args),
     /// Fit a model's numbers to pictures of what it should become.
     Fit(fit::Args),
+    /// The zero-shot loop: a language model proposes kinds of the object, img2img servers
+    /// guide a fit towards each, and the main job runs on the variations found.
+    Explore(explore::Args),
 }
 
 /// Runs the command line and returns the process exit code.
@@ -59,6 +65,7 @@ pub fn run() -> ExitCode {
         Some(Command::Inspect(args)) => inspect::run(args),
         Some(Command::Render(args)) => render::run(args),
         Some(Command::Fit(args)) => fit::run(args),
+        Some(Command::Explore(args)) => explore::run(args),
         None => compile::run(cli.main),
     }
 }

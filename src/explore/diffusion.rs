@@ -174,6 +174,9 @@ pub fn decode_image(bytes: &[u8]) -> Result<Rgb, String> {
     })
 }
 
+/// One request's images, or why there are none.
+type Answer = Result<Vec<Rgb>, ServerError>;
+
 /// What servers have failed this round.
 struct Round<'p> {
     pool: &'p Pool,
@@ -203,7 +206,7 @@ impl Round<'_> {
     }
 
     /// One request, over the servers, with retries.
-    fn send(&self, i: usize, body: &serde_json::Value, size: u32) -> Result<Vec<Rgb>, ServerError> {
+    fn send(&self, i: usize, body: &serde_json::Value, size: u32) -> Answer {
         let mut wait = self.pool.backoff;
         let mut tries = 0;
         loop {
@@ -252,7 +255,7 @@ impl Pool {
             aside: Mutex::new(vec![false; self.servers.len()]),
         };
         let bodies: Vec<serde_json::Value> = requests.iter().map(|r| body(r, sampler)).collect();
-        let results: Vec<Mutex<Option<Result<Vec<Rgb>, ServerError>>>> =
+        let results: Vec<Mutex<Option<Answer>>> =
             requests.iter().map(|_| Mutex::new(None)).collect();
         let next = AtomicUsize::new(0);
         let workers = self.parallel.clamp(1, requests.len().max(1));

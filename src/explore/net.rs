@@ -93,6 +93,15 @@ fn excerpt(text: &str) -> String {
     format!(": `{cut}{more}`")
 }
 
+/// Whether an I/O error says nobody answers at the address.
+fn unreachable(kind: std::io::ErrorKind) -> bool {
+    use std::io::ErrorKind::*;
+    matches!(
+        kind,
+        ConnectionRefused | ConnectionReset | ConnectionAborted | NotConnected | AddrNotAvailable
+    )
+}
+
 /// A failure to reach `url` or to read its answer.
 fn transport(server: &str, url: &str, e: &ureq::Error) -> ServerError {
     let what = match e {
@@ -100,6 +109,7 @@ fn transport(server: &str, url: &str, e: &ureq::Error) -> ServerError {
         ureq::Error::ConnectionFailed | ureq::Error::HostNotFound => {
             format!("cannot reach {url} ({e})")
         }
+        ureq::Error::Io(io) if unreachable(io.kind()) => format!("cannot reach {url} ({io})"),
         ureq::Error::BodyExceedsLimit(n) => format!("{url} answered more than {n} bytes"),
         _ => format!("{url}: {e}"),
     };
