@@ -132,6 +132,7 @@ fn the_language_model_s_kinds_are_printed_and_picked() {
     );
     assert!(out.status.success(), "{}", stderr(&out));
     let err = stderr(&out);
+    eprintln!("{err}");
     assert!(
         err.contains("1. Bench") && err.contains("3. Bar stool"),
         "{err}"
