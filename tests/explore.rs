@@ -123,11 +123,24 @@ fn the_language_model_s_kinds_are_printed_and_picked() {
     let srv = start(target, Mode::Good);
     let dir = folder("llm");
     let llm = format!("{}/v1", srv.url);
+    std::fs::create_dir_all(dir.join("pages")).unwrap();
+    let page = dir.join("pages/index.html").display().to_string();
     let out = explore(
         &dir,
         &[&srv],
         &[
-            "--llm", &llm, "--pick", "3", "--prompt", "bench", "--rounds", "1", "--views", "2",
+            "--llm",
+            &llm,
+            "--pick",
+            "3",
+            "--prompt",
+            "bench",
+            "--rounds",
+            "1",
+            "--views",
+            "2",
+            "--gallery",
+            &page,
         ],
     );
     assert!(out.status.success(), "{}", stderr(&out));
@@ -146,7 +159,24 @@ fn the_language_model_s_kinds_are_printed_and_picked() {
         .collect();
     assert_eq!(names, ["bar_stool", "bench"]);
     assert!(dir.join("run/bar_stool.scad").is_file());
+    // The gallery page: every image it lists is there.
+    let page = std::fs::read_to_string(dir.join("pages/index.html")).unwrap();
+    let images = image_links(&page);
+    // Per prompt: one round of two views (guidance, render) and four final views; presets.
+    assert_eq!(images.len(), 2 * (2 * 2 + 4) + 1, "{page}");
+    for src in &images {
+        assert!(dir.join("pages").join(src).is_file(), "{src} is missing");
+    }
+    assert!(dir.join("pages/index_presets.png").is_file());
     std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// The `src` of every `<img>` of an HTML page.
+fn image_links(page: &str) -> Vec<String> {
+    page.split("<img src=\"")
+        .skip(1)
+        .map(|rest| rest.split('"').next().unwrap().replace("%20", " "))
+        .collect()
 }
 
 #[test]

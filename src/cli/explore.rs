@@ -10,6 +10,7 @@ use super::{EXIT_IO_ERROR, EXIT_MODEL_ERROR, EXIT_SERVER_ERROR};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use reparamc::command::explore::{Options, RoundDone, StopKind, Stopped, prepare};
 use reparamc::explore::diffusion::{Pool, Sampler};
+use reparamc::explore::gallery::presets_path;
 use reparamc::explore::llm::{Llm, parse_pick};
 use reparamc::explore::rounds::Settings;
 use reparamc::front::source::SourceMap;
@@ -96,6 +97,11 @@ pub struct Args {
     /// Further tries of a request when every server failed it for a reason that may pass.
     #[arg(long, default_value_t = 3)]
     retries: u32,
+    /// Write a page (HTML) with each prompt's sampled rounds (guidance beside render), its
+    /// final variation's views and the output's presets, rendered; the presets picture goes
+    /// beside it as `<name>_presets.png`.
+    #[arg(long, value_name = "FILE")]
+    gallery: Option<PathBuf>,
 }
 
 /// The library's options from the flags, or the message for a bad flag.
@@ -170,6 +176,7 @@ fn options(args: &Args) -> Result<Options, String> {
             .with_extension("json")
             .file_name()
             .map(|n| n.to_string_lossy().into_owned()),
+        gallery: args.gallery.clone(),
     })
 }
 
@@ -218,7 +225,14 @@ impl Bars {
 
 pub fn run(args: Args) -> ExitCode {
     let presets = args.output.with_extension("json");
-    let outputs = [args.output.as_path(), presets.as_path()];
+    let mut outputs = vec![args.output.as_path(), presets.as_path()];
+    let gallery_png = args.gallery.as_deref().map(presets_path);
+    outputs.extend(
+        args.gallery
+            .iter()
+            .chain(&gallery_png)
+            .map(PathBuf::as_path),
+    );
     if let Err(code) = super::check_outputs(&outputs, std::slice::from_ref(&args.model)) {
         return code;
     }
@@ -251,6 +265,14 @@ pub fn run(args: Args) -> ExitCode {
     let mut files: Vec<(&Path, &[u8])> = vec![(&args.output, compiled.scad.as_bytes())];
     if let Some(p) = &compiled.presets {
         files.push((&presets, p.as_bytes()));
+    }
+    if let (Some(page), Some(png), Some((html, bytes))) =
+        (&args.gallery, &gallery_png, &explored.gallery)
+    {
+        if !bytes.is_empty() {
+            files.push((png, bytes));
+        }
+        files.push((page, html.as_bytes()));
     }
     for (path, bytes) in files {
         if let Err(e) = write_atomic(path, bytes) {

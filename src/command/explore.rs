@@ -14,6 +14,7 @@
 use super::compile::{CompileOptions, CompileOutput, Options as CompileJob, compile};
 use super::{Failure, Message, as_messages};
 use crate::explore::diffusion::Pool;
+use crate::explore::gallery;
 use crate::explore::llm::{Llm, ask_kinds, pick};
 use crate::explore::rounds::{ExploreError, Explorer, Settings};
 use crate::explore::run::{PromptState, RunFolder, STATE_VERSION, State, names_of};
@@ -42,6 +43,8 @@ pub struct Options {
     pub resume: bool,
     /// The file name the parameter sets will have (for the output's comment).
     pub presets_name: Option<String>,
+    /// Make the gallery page that will be written here.
+    pub gallery: Option<PathBuf>,
 }
 
 /// Why the command stopped, which sets the exit code.
@@ -103,6 +106,9 @@ pub struct Explored {
     pub output: CompileOutput,
     /// The variation files, one per prompt, in the run folder.
     pub variations: Vec<PathBuf>,
+    /// The gallery page and the presets picture it shows (to be written at
+    /// [`crate::explore::gallery::presets_path`] of the page), when asked.
+    pub gallery: Option<(String, Vec<u8>)>,
     pub messages: Vec<Message>,
 }
 
@@ -322,17 +328,62 @@ impl Job {
                 presets_name: self.opts.presets_name.clone(),
                 ..CompileJob::default()
             },
+            gallery: self.opts.gallery.is_some(),
             ..CompileOptions::default()
         };
         let output = compile(&job, sources).map_err(|d| Stopped {
             failure: Failure::from(d),
             kind: StopKind::Input,
         })?;
+        let gallery = match &self.opts.gallery {
+            Some(at) => Some(self.gallery(&explorer, at, &output)?),
+            None => None,
+        };
         Ok(Explored {
             output,
             variations,
+            gallery,
             messages: std::mem::take(&mut self.messages),
         })
+    }
+
+    /// Renders each prompt's final views into the run folder and makes the page to be
+    /// written at `at`, with the presets picture the main job drew.
+    fn gallery(
+        &self,
+        explorer: &Explorer,
+        at: &std::path::Path,
+        output: &CompileOutput,
+    ) -> Result<(String, Vec<u8>), Stopped> {
+        let cameras = explorer
+            .final_cameras()
+            .map_err(|text| Stopped::input(Vec::new(), "E0801", text))?;
+        for p in &self.state.prompts {
+            for (v, img) in explorer.render(&p.x, &cameras).iter().enumerate() {
+                let path = gallery::final_view_path(&self.folder, &p.name, v);
+                self.folder
+                    .write(&path, &img.encode_png())
+                    .map_err(|text| Stopped {
+                        failure: Failure::input(Vec::new(), "E0804", text),
+                        kind: StopKind::Output,
+                    })?;
+            }
+        }
+        let png = output
+            .gallery
+            .as_ref()
+            .map(|g| g.png.clone())
+            .unwrap_or_default();
+        let presets = (!png.is_empty()).then(|| gallery::presets_path(at));
+        let html = gallery::page(
+            at,
+            &self.folder,
+            &self.state,
+            self.opts.settings.views,
+            cameras.len(),
+            presets.as_deref(),
+        );
+        Ok((html, png))
     }
 }
 

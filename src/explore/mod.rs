@@ -12,6 +12,7 @@
 //! folder), always through [`crate::output::write_atomic`]; HTTP is `ureq`'s ([`net`]).
 
 pub mod diffusion;
+pub mod gallery;
 pub mod llm;
 pub mod net;
 pub mod rounds;

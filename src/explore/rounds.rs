@@ -195,6 +195,26 @@ impl<'a> Explorer<'a> {
             .collect()
     }
 
+    /// The views a variation is shown from: OpenSCAD's default direction, then front,
+    /// side and rear, framed as the rounds' views are.
+    pub fn final_cameras(&self) -> Result<Vec<Camera>, String> {
+        let size = self.settings.size;
+        [
+            ("default", 55.0, 25.0),
+            ("front", 75.0, 0.0),
+            ("side", 75.0, 90.0),
+            ("rear", 75.0, 180.0),
+        ]
+        .iter()
+        .map(|&(name, tilt, azimuth)| {
+            let [cx, cy, cz] = self.center;
+            let params = [cx, cy, cz, tilt, 0.0, azimuth, self.distance];
+            Camera::from_openscad(name, &params, Projection::Perspective, size, size)
+                .map_err(|e| e.to_string())
+        })
+        .collect()
+    }
+
     /// Pictures of the model at numbers `x` from `cameras` (hard edges, default shading).
     pub fn render(&self, x: &[f64], cameras: &[Camera]) -> Vec<Rgb> {
         let scene = self.problem.scene(x);
