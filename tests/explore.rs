@@ -55,7 +55,7 @@ fn command(dir: &Path, servers: &[&Server], extra: &[&str]) -> Command {
         .arg(dir.join("chair_param.scad"))
         .arg("--run")
         .arg(dir.join("run"))
-        .args(["--size", "64", "--diffusion-size", "64", "--batch", "2"])
+        .args(["--size", "64", "--diffusion-size", "64", "--batch", "3"])
         .args(["--iterations", "30", "--timeout", "20", "--retries", "1"]);
     for s in servers {
         cmd.args(["--diffusion", &s.url]);
@@ -88,7 +88,7 @@ fn the_loop_moves_the_chair_towards_the_bench_and_resumes() {
     let after = iou_of(&model_of("bench.scad", &varied), &target);
     eprintln!("IoU with the bench: {start_iou:.3} -> {after:.3}");
     assert!(
-        after > 0.65 && after > start_iou + 0.3,
+        after > 0.6 && after > start_iou + 0.25,
         "IoU with the bench {start_iou:.3} -> {after:.3}"
     );
     let s = state(&dir);

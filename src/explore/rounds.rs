@@ -121,15 +121,16 @@ fn unit(z: u64) -> f64 {
     (mix(z) >> 11) as f64 / (1u64 << 53) as f64
 }
 
-/// Mean squared colour difference of two pictures of the same size.
+/// How far two pictures of the same size are apart: the mean squared difference of their
+/// foreground masks (each against its own background colour) plus that of their grey
+/// levels, so a sample lit or tinted otherwise is not taken for another shape.
 fn distance(a: &Rgb, b: &Rgb) -> f64 {
-    let sum: f64 = a
-        .data
-        .iter()
-        .zip(&b.data)
-        .map(|(p, q)| (0..3).map(|k| ((p[k] - q[k]) as f64).powi(2)).sum::<f64>())
-        .sum();
-    sum / a.data.len().max(1) as f64
+    let (ta, tb) = (Target::from_rgb(a), Target::from_rgb(b));
+    let mean = |x: &[f32], y: &[f32]| {
+        let sum: f64 = x.iter().zip(y).map(|(p, q)| ((p - q) as f64).powi(2)).sum();
+        sum / x.len().max(1) as f64
+    };
+    mean(&ta.m, &tb.m) + mean(&ta.s, &tb.s)
 }
 
 /// Of `images`, the one closest to `render` (at the render's size).
@@ -360,13 +361,28 @@ impl<'a> Explorer<'a> {
 mod tests {
     use super::*;
 
+    /// A white picture with a square of `colour` from `at` to `at + 4`.
+    fn square(size: u32, at: u32, colour: [f32; 3]) -> Rgb {
+        let mut img = Rgb::new(size, size, [1.0; 3]);
+        for y in at..at + 4 {
+            for x in at..at + 4 {
+                img.data[(y * size + x) as usize] = colour;
+            }
+        }
+        img
+    }
+
     #[test]
-    fn the_closest_picture_is_kept() {
-        let render = Rgb::new(4, 4, [1.0, 1.0, 1.0]);
-        let near = Rgb::new(8, 8, [0.9, 0.9, 0.9]);
-        let far = Rgb::new(8, 8, [0.0, 0.0, 0.0]);
-        let kept = closest(vec![far, near], &render).unwrap();
-        assert_eq!((kept.width, kept.get(0, 0)), (4, [0.9, 0.9, 0.9]));
+    fn the_closest_shape_is_kept_whatever_its_colour() {
+        let render = square(16, 4, [0.5, 0.5, 0.5]);
+        // The same shape tinted is closer than another shape in the render's colour.
+        let tinted = square(16, 4, [0.6, 0.4, 0.3]);
+        let moved = square(16, 10, [0.5, 0.5, 0.5]);
+        let kept = closest(vec![moved, tinted.clone()], &render).unwrap();
+        assert_eq!(kept, tinted);
+        // Pictures of another size are compared (and kept) at the render's size.
+        let big = square(32, 8, [0.5, 0.5, 0.5]);
+        assert_eq!(closest(vec![big], &render).unwrap().width, 16);
     }
 
     #[test]

@@ -1,8 +1,8 @@
 //! A stand-in for the servers `reparamc explore` talks to, on `std::net` threads: an
 //! OpenAI-compatible `/v1/chat/completions` that answers a numbered list, and a WebUI
 //! `/sdapi/v1/img2img` that answers `batch_size` renders of a hidden target model from the
-//! camera in the request's `"reparamc"` field (the CPU renderer), the first exact and the
-//! others as diffusion samples differ: shifted a pixel or two and tinted.
+//! camera in the request's `"reparamc"` field (the CPU renderer), perturbed as diffusion
+//! samples are (see [`sample`]).
 
 #![allow(dead_code)]
 
@@ -10,7 +10,7 @@ use base64::Engine;
 use base64::engine::general_purpose::STANDARD;
 use reparamc::front::source::SourceMap;
 use reparamc::ir::Model;
-use reparamc::render::camera::CameraSpec;
+use reparamc::render::camera::{Camera, CameraSpec};
 use reparamc::render::cpu::{picture, render_hard};
 use reparamc::render::image::Rgb;
 use reparamc::render::scene::DEFAULT_SHADE;
@@ -144,31 +144,70 @@ fn answer(
         size
     };
     let batch = request["batch_size"].as_u64().unwrap_or(1) as usize;
+    let seed = request["seed"].as_u64().unwrap_or(0);
     let camera = spec.camera(None).unwrap().with_size(size, size);
-    let exact = picture(
-        &render_hard(&target.parts, &target.csg, &camera),
-        DEFAULT_SHADE,
-    );
     let images: Vec<String> = (0..batch)
-        .map(|i| STANDARD.encode(sample(&exact, i).encode_png()))
+        .map(|i| STANDARD.encode(sample(target, &camera, seed, i)))
         .collect();
     let a = serde_json::json!({"images": images, "parameters": {}, "info": "{}"});
     ("200 OK".into(), a.to_string())
 }
 
-/// Sample `i` of a batch: the render itself, or shifted by `i` pixels to the right and
-/// tinted, as diffusion samples differ from each other.
-fn sample(exact: &Rgb, i: usize) -> Rgb {
-    if i == 0 {
-        return exact.clone();
+/// Jitter of each number of the target in a sample, relative.
+const JITTER: f64 = 0.02;
+
+/// Sample `i` of a batch, as diffusion samples differ from the truth and from each other:
+/// every number of the target off by up to [`JITTER`] (differently in every view and
+/// sample), drawn at twice the size and shrunk (antialiased); the second sample misses
+/// the first part (a thin leg) and is lit and tinted otherwise; the third is a JPEG.
+fn sample(target: &Model, camera: &Camera, seed: u64, i: usize) -> Vec<u8> {
+    let mut state = seed.wrapping_mul(0x9e37_79b9_7f4a_7c15) ^ (i as u64 + 1);
+    let mut next = || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    for _ in 0..4 {
+        next();
     }
-    let mut img = Rgb::new(exact.width, exact.height, [1.0; 3]);
-    for y in 0..exact.height {
-        for x in 0..exact.width {
-            let from = x.saturating_sub(2 * i as u32);
-            let c = exact.get(from, y);
-            img.data[(y * exact.width + x) as usize] = [c[0], c[1] * 0.9, c[2] * 0.8];
+    let values: Vec<f64> = target
+        .slot_values()
+        .iter()
+        .map(|v| v * (1.0 + JITTER * (2.0 * next() - 1.0)))
+        .collect();
+    let parts = target.parts_at(&values).unwrap();
+    let csg = if i == 1 {
+        target.csg.without(&[0]).unwrap()
+    } else {
+        target.csg.clone()
+    };
+    let big = camera.with_size(camera.width * 2, camera.height * 2);
+    let mut img = picture(&render_hard(&parts, &csg, &big), DEFAULT_SHADE)
+        .resize(camera.width, camera.height);
+    if i == 1 {
+        for c in &mut img.data {
+            *c = [(c[0] * 1.1).min(1.0), c[1] * 0.9, c[2] * 0.75];
         }
     }
-    img
+    if i == 2 { jpeg(&img) } else { img.encode_png() }
+}
+
+/// `img` as a JPEG of middling quality (with its artefacts).
+fn jpeg(img: &Rgb) -> Vec<u8> {
+    let bytes: Vec<u8> = img
+        .data
+        .iter()
+        .flat_map(|c| c.map(|v| (v.clamp(0.0, 1.0) * 255.0).round() as u8))
+        .collect();
+    let mut out = Vec::new();
+    jpeg_encoder::Encoder::new(&mut out, 70)
+        .encode(
+            &bytes,
+            img.width as u16,
+            img.height as u16,
+            jpeg_encoder::ColorType::Rgb,
+        )
+        .unwrap();
+    out
 }
