@@ -8,7 +8,7 @@ mod server;
 
 use reparamc::geom::iou;
 use reparamc::ir::Model;
-use server::{Mode, Server, model_of, start};
+use server::{Mode, Server, model_of, start, start_for};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
@@ -31,6 +31,18 @@ fn bench() -> String {
         )
         .replace("translate([-50, -50, 15])", "translate([-80, -50, 15])")
         .replace("translate([35, -50, 15])", "translate([65, -50, 15])")
+}
+
+/// The chair with legs `legs` high and a back `back` high: a stool, a bar stool.
+fn legs_and_back(legs: u32, back: u32) -> String {
+    let mut t = CHAIR.to_string();
+    for (x, y) in [(-50, -50), (35, -50), (-50, 35), (35, 35)] {
+        t = t.replace(
+            &format!("translate([{x}, {y}, -70]) cube([15, 15, 70])"),
+            &format!("translate([{x}, {y}, -{legs}]) cube([15, 15, {legs}])"),
+        );
+    }
+    t.replace("cube([100, 15, 70])", &format!("cube([100, 15, {back}])"))
 }
 
 fn folder(name: &str) -> PathBuf {
@@ -319,4 +331,50 @@ fn walk(dir: &Path) -> Vec<PathBuf> {
         }
     }
     out
+}
+
+#[test]
+fn three_prompts_each_move_towards_their_own_kind() {
+    let targets = [
+        ("bench", bench()),
+        ("stool", legs_and_back(40, 25)),
+        ("bar stool", legs_and_back(130, 30)),
+    ];
+    let models: Vec<(String, Model)> = targets
+        .iter()
+        .map(|(k, t)| (k.to_string(), model_of("t.scad", t)))
+        .collect();
+    let srv = start_for(models.clone(), Mode::Good);
+    let dir = folder("three");
+    let mut args = vec!["--rounds", "3"];
+    for (k, _) in &targets {
+        args.extend(["--prompt", k]);
+    }
+    let out = explore(&dir, &[&srv], &args);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let chair = model_of("chair.scad", CHAIR);
+    let (mut before, mut after) = (0.0, 0.0);
+    for ((kind, target), name) in models.iter().zip(["bench", "stool", "bar_stool"]) {
+        let text = std::fs::read_to_string(dir.join(format!("run/{name}.scad"))).unwrap();
+        assert_ne!(text, CHAIR, "{kind} did not move");
+        let (b, a) = (
+            iou_of(&chair, target),
+            iou_of(&model_of("v.scad", &text), target),
+        );
+        eprintln!("{kind}: IoU {b:.3} -> {a:.3}");
+        before += b / 3.0;
+        after += a / 3.0;
+    }
+    // Three rounds at 64 pixels: the bench (the farthest) closes most of its gap, the
+    // stool a little, the bar stool's legs not yet (their tops leave the seat first); on
+    // the whole the variations are nearer their kinds than the chair is.
+    assert!(after > before + 0.05, "mean IoU {before:.3} -> {after:.3}");
+    let presets: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("chair_param.json")).unwrap())
+            .unwrap();
+    let sets = presets["parameterSets"].as_object().unwrap();
+    for name in ["bench", "stool", "bar_stool"] {
+        assert!(sets.contains_key(name), "{presets}");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
 }

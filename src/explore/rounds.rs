@@ -268,12 +268,25 @@ impl<'a> Explorer<'a> {
                 round: round + 1,
                 error,
             })?;
+        self.take(x, round, &cameras, renders, answers)
+    }
+
+    /// The round's own work once the servers have answered: per view, the sample closest
+    /// to the render (`renders`, from `cameras`), then the fit steps towards them from `x`.
+    pub fn take(
+        &self,
+        x: &[f64],
+        round: usize,
+        cameras: &[Camera],
+        renders: Vec<Rgb>,
+        answers: Vec<Vec<Rgb>>,
+    ) -> Result<RoundOutcome, ExploreError> {
         let guides: Vec<Rgb> = answers
             .into_iter()
             .zip(&renders)
             .filter_map(|(images, r)| closest(images, r))
             .collect();
-        let (x, loss) = self.fit(x, &cameras, &guides, round)?;
+        let (x, loss) = self.fit(x, cameras, &guides, round)?;
         Ok(RoundOutcome {
             x,
             loss,
