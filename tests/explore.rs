@@ -244,6 +244,25 @@ fn a_malformed_answer_stops_the_run_and_keeps_finished_rounds() {
         "{}",
         stderr(&out)
     );
+    // A server that answers HTTP 500: retried once after a backoff, then named.
+    let failing = start(model_of("bench.scad", &bench()), Mode::Fails);
+    let dir4 = folder("http500");
+    let out = explore(
+        &dir4,
+        &[&failing],
+        &["--prompt", "bench", "--rounds", "1", "--views", "1"],
+    );
+    assert_eq!(out.status.code(), Some(4));
+    assert!(
+        stderr(&out).contains("answered HTTP 500"),
+        "{}",
+        stderr(&out)
+    );
+    assert_eq!(
+        failing.requests.load(std::sync::atomic::Ordering::SeqCst),
+        2
+    );
+    std::fs::remove_dir_all(&dir4).unwrap();
     // A server nobody listens on: unreachable, retried, then named.
     let dir3 = folder("unreachable");
     let listener = std::net::TcpListener::bind("127.0.0.1:0").unwrap();

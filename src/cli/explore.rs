@@ -240,6 +240,8 @@ pub fn run(args: Args) -> ExitCode {
         Ok(o) => o,
         Err(text) => return input_error("E0802", text),
     };
+    let _ = super::INTERRUPTED
+        .set("no file half-written; the run folder keeps the rounds done (--resume)");
     let mut sources = SourceMap::new();
     let mut job = match prepare(&opts, &mut sources) {
         Ok(j) => j,

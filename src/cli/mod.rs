@@ -23,6 +23,10 @@ pub const EXIT_IO_ERROR: u8 = 3;
 /// Exit code for a server (language model, img2img) that failed or answered wrongly.
 pub const EXIT_SERVER_ERROR: u8 = 4;
 
+/// What an interrupt leaves, when a command writes as it goes (`explore`); by default
+/// nothing, as every other command writes its files at the end.
+pub static INTERRUPTED: std::sync::OnceLock<&'static str> = std::sync::OnceLock::new();
+
 #[derive(Parser)]
 #[command(
     name = "reparamc",
@@ -58,7 +62,8 @@ pub fn run() -> ExitCode {
     // written whole at the end, inputs never).
     let _ = ctrlc::set_handler(|| {
         reparamc::output::remove_unfinished();
-        eprintln!("interrupted: no output written");
+        let note = INTERRUPTED.get().copied().unwrap_or("no output written");
+        eprintln!("interrupted: {note}");
         std::process::exit(130);
     });
     match cli.command {
