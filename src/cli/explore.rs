@@ -8,11 +8,10 @@
 use super::render::{input_error, say};
 use super::{EXIT_IO_ERROR, EXIT_MODEL_ERROR, EXIT_SERVER_ERROR};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use reparamc::command::explore::{Options, RoundDone, StopKind, Stopped, prepare};
-use reparamc::explore::diffusion::{Pool, Sampler};
-use reparamc::explore::gallery::presets_path;
-use reparamc::explore::llm::{Llm, parse_pick};
-use reparamc::explore::rounds::Settings;
+use reparamc::command::explore::{
+    Llm, Options, Pool, RoundDone, Sampler, Settings, StopKind, Stopped, parse_pick, prepare,
+    presets_path,
+};
 use reparamc::front::source::SourceMap;
 use reparamc::output::write_atomic;
 use std::io::IsTerminal;

@@ -13,15 +13,21 @@
 
 use super::compile::{CompileOptions, CompileOutput, Options as CompileJob, compile};
 use super::{Failure, Message, as_messages};
-use crate::explore::diffusion::Pool;
+pub use crate::explore::diffusion::Pool;
 use crate::explore::gallery;
-use crate::explore::llm::{Llm, ask_kinds, pick};
-use crate::explore::rounds::{ExploreError, Explorer, Settings};
+pub use crate::explore::llm::Llm;
+use crate::explore::llm::{ask_kinds, pick};
+pub use crate::explore::rounds::Settings;
+use crate::explore::rounds::{ExploreError, Explorer};
 use crate::explore::run::{PromptState, RunFolder, STATE_VERSION, State, names_of};
 use crate::front::source::SourceMap;
 use crate::ir::Model;
 use crate::span::FileId;
 use std::path::PathBuf;
+
+pub use crate::explore::diffusion::Sampler;
+pub use crate::explore::gallery::presets_path;
+pub use crate::explore::llm::parse_pick;
 
 /// The `explore` command's options.
 #[derive(Debug, Clone, PartialEq)]

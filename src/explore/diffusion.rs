@@ -306,6 +306,17 @@ mod tests {
         .unwrap()
     }
 
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(256))]
+        /// Any bytes after a JPEG or PNG signature give an image or an error, never a panic.
+        #[test]
+        fn bad_images_are_errors(tail in proptest::collection::vec(proptest::prelude::any::<u8>(), 0..400), png in proptest::prelude::any::<bool>()) {
+            let mut bytes = if png { b"\x89PNG\r\n\x1a\n".to_vec() } else { vec![0xff, 0xd8, 0xff] };
+            bytes.extend(tail);
+            let _ = decode_image(&bytes);
+        }
+    }
+
     #[test]
     fn views_are_named_by_azimuth() {
         assert_eq!(view_word(&camera(0.0)), "front");

@@ -153,6 +153,16 @@ pub fn pick(
 mod tests {
     use super::*;
 
+    proptest::proptest! {
+        /// Any answer gives items without panicking, each one non-empty and trimmed.
+        #[test]
+        fn any_answer_is_read(text in "(([0-9]{1,2}[.)] |[-*•+] )?[^\n]{0,30}\n){0,8}") {
+            for item in parse_items(&text) {
+                proptest::prop_assert!(!item.is_empty() && item.trim() == item);
+            }
+        }
+    }
+
     #[test]
     fn numbered_lists_lose_their_descriptions() {
         let text = "Here are some types of chair:\n\n1. **Armchair**: a chair with arms.\n\
