@@ -28,6 +28,7 @@ static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
 pub mod analysis;
 pub mod back;
 pub mod command;
+pub mod explore;
 pub mod families;
 pub mod fit;
 pub mod front;

@@ -14,8 +14,14 @@ use crate::span::{FileId, Span};
 use std::collections::{BTreeSet, HashMap};
 
 /// `text` (the file `file`) with the literal of every slot in that file set to `values[slot]`.
-/// A negative value replacing a literal is parenthesised so `-` signs in front stay right.
+/// A negative value replacing a literal is parenthesised so `-` signs in front stay right,
+/// unless the literal stands alone (a vector element, an argument, an assignment's value):
+/// there a plain `-` reads the same, and the file stays the same program token for token
+/// (a `--vary` file).
 pub fn with_slot_values(text: &str, file: FileId, slots: &[Slot], values: &[f64]) -> String {
+    let alone = |at: usize| {
+        prev_char(text, at).is_none_or(|(_, c)| matches!(c, '[' | '(' | ',' | '=' | '{' | ';'))
+    };
     let mut edits: Vec<(std::ops::Range<usize>, String)> = slots
         .iter()
         .filter(|s| s.span.file == file)
@@ -23,7 +29,13 @@ pub fn with_slot_values(text: &str, file: FileId, slots: &[Slot], values: &[f64]
         .map(|s| {
             let v = round_for_source(values[s.id as usize]);
             let t = format_number(v);
-            (s.span.range(), if v < 0.0 { format!("({t})") } else { t })
+            let r = s.span.range();
+            let t = if v < 0.0 && !alone(r.start) {
+                format!("({t})")
+            } else {
+                t
+            };
+            (r, t)
         })
         .collect();
     edits.sort_by_key(|(r, _)| r.start);
@@ -145,7 +157,16 @@ mod tests {
             slot(2, 14, 16, 30.0),
         ];
         let out = with_slot_values(text, 0, &slots, &[12.5, 20.0, -3.0]);
-        assert_eq!(out, "cube([12.5, 20, (-3)]); // keep");
+        assert_eq!(out, "cube([12.5, 20, -3]); // keep");
+        // After an operator, a negative value keeps its sign apart.
+        let text = "x = 2 - 10;";
+        let out = with_slot_values(
+            text,
+            0,
+            &[slot(0, 4, 5, 2.0), slot(1, 8, 10, 10.0)],
+            &[-1.0, -3.0],
+        );
+        assert_eq!(out, "x = -1 - (-3);");
     }
 
     #[test]

@@ -4,6 +4,7 @@
 //! helpers and the exit codes. Nothing here computes results: it calls the library.
 
 mod compile;
+mod explore;
 mod fit;
 mod inspect;
 mod render;
@@ -19,6 +20,12 @@ use std::process::ExitCode;
 pub const EXIT_MODEL_ERROR: u8 = 1;
 /// Exit code for a failure to write output.
 pub const EXIT_IO_ERROR: u8 = 3;
+/// Exit code for a server (language model, img2img) that failed or answered wrongly.
+pub const EXIT_SERVER_ERROR: u8 = 4;
+
+/// What an interrupt leaves, when a command writes as it goes (`explore`); by default
+/// nothing, as every other command writes its files at the end.
+pub static INTERRUPTED: std::sync::OnceLock<&'static str> = std::sync::OnceLock::new();
 
 #[derive(Parser)]
 #[command(
@@ -43,6 +50,9 @@ enum Command {
     Render(render::Args),
     /// Fit a model's numbers to pictures of what it should become.
     Fit(fit::Args),
+    /// The zero-shot loop: a language model proposes kinds of the object, img2img servers
+    /// guide a fit towards each, and the main job runs on the variations found.
+    Explore(explore::Args),
 }
 
 /// Runs the command line and returns the process exit code.
@@ -52,13 +62,15 @@ pub fn run() -> ExitCode {
     // written whole at the end, inputs never).
     let _ = ctrlc::set_handler(|| {
         reparamc::output::remove_unfinished();
-        eprintln!("interrupted: no output written");
+        let note = INTERRUPTED.get().copied().unwrap_or("no output written");
+        eprintln!("interrupted: {note}");
         std::process::exit(130);
     });
     match cli.command {
         Some(Command::Inspect(args)) => inspect::run(args),
         Some(Command::Render(args)) => render::run(args),
         Some(Command::Fit(args)) => fit::run(args),
+        Some(Command::Explore(args)) => explore::run(args),
         None => compile::run(cli.main),
     }
 }

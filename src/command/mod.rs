@@ -11,6 +11,7 @@
 //! [`SourceMap`]: crate::front::source::SourceMap
 
 pub mod compile;
+pub mod explore;
 pub mod fit;
 pub mod inspect;
 pub mod pictures;

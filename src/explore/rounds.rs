@@ -1,0 +1,408 @@
+//! The loop for one prompt, as the paper runs it: each round samples cameras around the
+//! model, renders the current numbers, asks the img2img servers for `k` pictures of each
+//! view, keeps the picture closest to the render (the paper's selection, which keeps thin
+//! legs from vanishing), and takes `iterations` steps of the image loss towards the kept
+//! pictures with the project's [`Fitter`](crate::fit::Fitter) (one round of one stage in
+//! slot space, from the current numbers).
+//!
+//! Invariants: a round is a function of the numbers it starts from, the run's seed, the
+//! prompt's name and the round's number (cameras and request seeds come from them), so a
+//! resumed run repeats an uninterrupted one given the same server answers; the state is
+//! saved after every round, its images first ([`super::run`]).
+
+use super::diffusion::{Pool, Request, Sampler, view_word};
+use super::net::ServerError;
+use super::run::{RunFolder, State};
+use crate::fit::loss::Target;
+use crate::fit::{FitOptions, Parametric, Stage};
+use crate::ir::Model;
+use crate::render::camera::{Camera, CameraSpec, OPENSCAD_FOV, Projection};
+use crate::render::image::{Rgb, picture};
+use crate::render::scene::DEFAULT_SHADE;
+use crate::render::soft::{ViewPrep, prepare_view};
+use crate::render::{Backend, CpuBackend};
+use crate::span::FileId;
+
+/// Margin around the model's bounding sphere in the sampled views (room to grow).
+const FRAME_MARGIN: f64 = 1.4;
+/// OpenSCAD gimbal tilt of the sampled views, degrees: 90 looks level, 0 straight down.
+const TILT: (f64, f64) = (50.0, 80.0);
+
+/// How the loop runs.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Settings {
+    /// Rounds per prompt (the paper: 400).
+    pub rounds: usize,
+    /// Fit steps per round (the paper: 30).
+    pub iterations: usize,
+    /// Views per round (the paper: 5).
+    pub views: usize,
+    /// Side of the renders fitted, pixels.
+    pub size: u32,
+    /// Learning rate of the fit steps.
+    pub lr: f64,
+    /// Edge softness, first and last round, pixels (geometric in between).
+    pub sigma: (f64, f64),
+    pub seed: u64,
+    pub sampler: Sampler,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Settings {
+            rounds: 400,
+            iterations: 30,
+            views: 5,
+            size: 256,
+            lr: FitOptions::default().lr,
+            sigma: (2.0, 0.5),
+            seed: 0,
+            sampler: Sampler::default(),
+        }
+    }
+}
+
+/// What stopped a prompt's loop.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ExploreError {
+    #[error("prompt `{prompt}`, round {round}: {error}")]
+    Server {
+        prompt: String,
+        round: usize,
+        error: ServerError,
+    },
+    #[error("{0}")]
+    Run(String),
+}
+
+/// One round's outcome.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RoundOutcome {
+    /// The numbers after the round's steps.
+    pub x: Vec<f64>,
+    /// The image loss at the end of the round.
+    pub loss: f64,
+    /// Per view: the picture kept, and the render it was asked from.
+    pub guides: Vec<Rgb>,
+    pub renders: Vec<Rgb>,
+}
+
+/// The loop set up for a model.
+pub struct Explorer<'a> {
+    problem: Parametric,
+    settings: &'a Settings,
+    pool: &'a Pool,
+    /// The main file's text and id, for writing variations.
+    text: &'a str,
+    main: FileId,
+    model: &'a Model,
+    /// Where the sampled cameras look and from how far.
+    center: [f64; 3],
+    distance: f64,
+}
+
+/// splitmix64: the next value of a seeded sequence.
+fn mix(mut z: u64) -> u64 {
+    z = z.wrapping_add(0x9e37_79b9_7f4a_7c15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+    z ^ (z >> 31)
+}
+
+/// A number from a name (FNV-1a), so a prompt's seeds do not depend on the other prompts.
+fn hash(name: &str) -> u64 {
+    name.bytes().fold(0xcbf2_9ce4_8422_2325, |h, b| {
+        (h ^ b as u64).wrapping_mul(0x100_0000_01b3)
+    })
+}
+
+/// A uniform number in `[0, 1)` from `z`.
+fn unit(z: u64) -> f64 {
+    (mix(z) >> 11) as f64 / (1u64 << 53) as f64
+}
+
+/// How far two pictures of the same size are apart: the mean squared difference of their
+/// foreground masks (each against its own background colour) plus that of their grey
+/// levels, so a sample lit or tinted otherwise is not taken for another shape.
+fn distance(a: &Rgb, b: &Rgb) -> f64 {
+    let (ta, tb) = (Target::from_rgb(a), Target::from_rgb(b));
+    let mean = |x: &[f32], y: &[f32]| {
+        let sum: f64 = x.iter().zip(y).map(|(p, q)| ((p - q) as f64).powi(2)).sum();
+        sum / x.len().max(1) as f64
+    };
+    mean(&ta.m, &tb.m) + mean(&ta.s, &tb.s)
+}
+
+/// Of `images`, the one closest to `render` (at the render's size).
+pub fn closest(images: Vec<Rgb>, render: &Rgb) -> Option<Rgb> {
+    images
+        .into_iter()
+        .map(|i| i.resize(render.width, render.height))
+        .map(|i| (distance(&i, render), i))
+        .min_by(|a, b| a.0.total_cmp(&b.0))
+        .map(|(_, i)| i)
+}
+
+impl<'a> Explorer<'a> {
+    /// Sets the loop up for `model` (whose main file is `text`, id `main`).
+    pub fn new(
+        model: &'a Model,
+        text: &'a str,
+        main: FileId,
+        settings: &'a Settings,
+        pool: &'a Pool,
+    ) -> Result<Explorer<'a>, String> {
+        let (lo, hi) = model.bounds().ok_or("the model has no parts to explore")?;
+        let center = std::array::from_fn(|a| (lo[a] + hi[a]) / 2.0);
+        let radius = (0..3).map(|a| (hi[a] - lo[a]).powi(2)).sum::<f64>().sqrt() / 2.0;
+        let half = (OPENSCAD_FOV.to_radians() / 2.0).tan().atan().sin();
+        let distance = radius * FRAME_MARGIN / half;
+        if !(distance.is_finite() && distance > 0.0) {
+            return Err("the model is too small or too large to frame".into());
+        }
+        Ok(Explorer {
+            problem: Parametric::new(model),
+            settings,
+            pool,
+            text,
+            main,
+            model,
+            center,
+            distance,
+        })
+    }
+
+    /// The model's own numbers.
+    pub fn x0(&self) -> &[f64] {
+        &self.problem.x0
+    }
+
+    /// The cameras of prompt `name`'s round `round`: random azimuths and tilts around the
+    /// model, the same for the same seed, name and round.
+    pub fn cameras(&self, name: &str, round: usize) -> Result<Vec<Camera>, String> {
+        let base = mix(self.settings.seed ^ hash(name)) ^ mix(round as u64);
+        let size = self.settings.size;
+        (0..self.settings.views)
+            .map(|v| {
+                let z = mix(base.wrapping_add(v as u64));
+                let azimuth = 360.0 * unit(z);
+                let tilt = TILT.0 + (TILT.1 - TILT.0) * unit(z ^ 0x5555);
+                let [cx, cy, cz] = self.center;
+                let params = [cx, cy, cz, tilt, 0.0, azimuth, self.distance];
+                let name = format!("view{}", v + 1);
+                Camera::from_openscad(&name, &params, Projection::Perspective, size, size)
+                    .map_err(|e| e.to_string())
+            })
+            .collect()
+    }
+
+    /// The views a variation is shown from: OpenSCAD's default direction, then front,
+    /// side and rear, framed as the rounds' views are.
+    pub fn final_cameras(&self) -> Result<Vec<Camera>, String> {
+        let size = self.settings.size;
+        [
+            ("default", 55.0, 25.0),
+            ("front", 75.0, 0.0),
+            ("side", 75.0, 90.0),
+            ("rear", 75.0, 180.0),
+        ]
+        .iter()
+        .map(|&(name, tilt, azimuth)| {
+            let [cx, cy, cz] = self.center;
+            let params = [cx, cy, cz, tilt, 0.0, azimuth, self.distance];
+            Camera::from_openscad(name, &params, Projection::Perspective, size, size)
+                .map_err(|e| e.to_string())
+        })
+        .collect()
+    }
+
+    /// Pictures of the model at numbers `x` from `cameras` (hard edges, default shading).
+    pub fn render(&self, x: &[f64], cameras: &[Camera]) -> Vec<Rgb> {
+        let scene = self.problem.scene(x);
+        let views: Vec<ViewPrep> = cameras
+            .iter()
+            .map(|c| prepare_view(&scene, c, None))
+            .collect();
+        let shades = vec![DEFAULT_SHADE; views.len()];
+        CpuBackend
+            .render(&scene, &views, None, &shades)
+            .iter()
+            .map(|(s, _)| picture(s))
+            .collect()
+    }
+
+    /// Edge softness of round `round` (from 0).
+    fn sigma_at(&self, round: usize) -> f64 {
+        let (first, last) = self.settings.sigma;
+        let n = self.settings.rounds.max(2) - 1;
+        first * (last / first).powf(round.min(n) as f64 / n as f64)
+    }
+
+    /// Round `round` (from 0) of `prompt` (named `name`) from numbers `x`.
+    pub fn round(
+        &self,
+        prompt: &str,
+        name: &str,
+        round: usize,
+        x: &[f64],
+    ) -> Result<RoundOutcome, ExploreError> {
+        let cameras = self.cameras(name, round).map_err(ExploreError::Run)?;
+        let renders = self.render(x, &cameras);
+        let base = mix(self.settings.seed ^ hash(name) ^ mix(round as u64 + 1));
+        let requests: Vec<Request> = cameras
+            .iter()
+            .zip(&renders)
+            .enumerate()
+            .map(|(v, (c, r))| Request {
+                prompt: format!("{prompt}, {} view", view_word(c)),
+                seed: mix(base.wrapping_add(v as u64)) >> 33,
+                init: r.clone(),
+                camera: CameraSpec::of(c, None),
+            })
+            .collect();
+        let answers = self
+            .pool
+            .run(&requests, &self.settings.sampler)
+            .map_err(|error| ExploreError::Server {
+                prompt: prompt.to_string(),
+                round: round + 1,
+                error,
+            })?;
+        self.take(x, round, &cameras, renders, answers)
+    }
+
+    /// The round's own work once the servers have answered: per view, the sample closest
+    /// to the render (`renders`, from `cameras`), then the fit steps towards them from `x`.
+    pub fn take(
+        &self,
+        x: &[f64],
+        round: usize,
+        cameras: &[Camera],
+        renders: Vec<Rgb>,
+        answers: Vec<Vec<Rgb>>,
+    ) -> Result<RoundOutcome, ExploreError> {
+        let guides: Vec<Rgb> = answers
+            .into_iter()
+            .zip(&renders)
+            .filter_map(|(images, r)| closest(images, r))
+            .collect();
+        let (x, loss) = self.fit(x, cameras, &guides, round)?;
+        Ok(RoundOutcome {
+            x,
+            loss,
+            guides,
+            renders,
+        })
+    }
+
+    /// `iterations` steps of the image loss from `x` towards `guides`: the numbers after
+    /// them and the loss there.
+    fn fit(
+        &self,
+        x: &[f64],
+        cameras: &[Camera],
+        guides: &[Rgb],
+        round: usize,
+    ) -> Result<(Vec<f64>, f64), ExploreError> {
+        let mut problem = self.problem.clone();
+        problem.x0 = x.to_vec();
+        let targets: Vec<Target> = guides.iter().map(Target::from_rgb).collect();
+        let sigma = self.sigma_at(round);
+        let opts = FitOptions {
+            lr: self.settings.lr,
+            iterations: self.settings.iterations.max(1),
+            rounds: 1,
+            sigma: (sigma, sigma),
+            proportions: false,
+            damped_rerun: None,
+            ..FitOptions::default()
+        };
+        let stages = [Stage::slots(1)];
+        let fitted = crate::fit::fit(
+            &problem,
+            cameras,
+            &targets,
+            &stages,
+            &mut CpuBackend,
+            &opts,
+            &mut |_| {},
+        );
+        match fitted {
+            Ok(r) => Ok((r.x, r.end_loss.iter().sum())),
+            Err(e) => Err(ExploreError::Run(format!("round {}: {e}", round + 1))),
+        }
+    }
+
+    /// The model's text with numbers `x` written in: a `--vary` file.
+    pub fn variation_text(&self, x: &[f64]) -> String {
+        crate::back::rewrite::with_slot_values(self.text, self.main, &self.model.slots, x)
+    }
+
+    /// Runs prompt `index` of `state` to the end, saving after every round, and writes its
+    /// variation; `progress` is told (rounds done, rounds, loss) after each round.
+    pub fn run_prompt(
+        &self,
+        folder: &RunFolder,
+        state: &mut State,
+        index: usize,
+        progress: &mut dyn FnMut(usize, usize, f64),
+    ) -> Result<(), ExploreError> {
+        let total = state.rounds;
+        while state.prompts[index].round < total {
+            let p = &state.prompts[index];
+            let (prompt, name, round) = (p.prompt.clone(), p.name.clone(), p.round);
+            let out = self.round(&prompt, &name, round, &p.x)?;
+            folder
+                .save_round(&name, round + 1, &out.guides, &out.renders)
+                .map_err(ExploreError::Run)?;
+            let p = &mut state.prompts[index];
+            p.round = round + 1;
+            p.x = out.x;
+            p.loss.push(out.loss);
+            folder.save(state).map_err(ExploreError::Run)?;
+            progress(round + 1, total, out.loss);
+        }
+        let p = &state.prompts[index];
+        let text = self.variation_text(&p.x);
+        folder
+            .write(&folder.variation_path(&p.name), text.as_bytes())
+            .map_err(ExploreError::Run)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A white picture with a square of `colour` from `at` to `at + 4`.
+    fn square(size: u32, at: u32, colour: [f32; 3]) -> Rgb {
+        let mut img = Rgb::new(size, size, [1.0; 3]);
+        for y in at..at + 4 {
+            for x in at..at + 4 {
+                img.data[(y * size + x) as usize] = colour;
+            }
+        }
+        img
+    }
+
+    #[test]
+    fn the_closest_shape_is_kept_whatever_its_colour() {
+        let render = square(16, 4, [0.5, 0.5, 0.5]);
+        // The same shape tinted is closer than another shape in the render's colour.
+        let tinted = square(16, 4, [0.6, 0.4, 0.3]);
+        let moved = square(16, 10, [0.5, 0.5, 0.5]);
+        let kept = closest(vec![moved, tinted.clone()], &render).unwrap();
+        assert_eq!(kept, tinted);
+        // Pictures of another size are compared (and kept) at the render's size.
+        let big = square(32, 8, [0.5, 0.5, 0.5]);
+        assert_eq!(closest(vec![big], &render).unwrap().width, 16);
+    }
+
+    #[test]
+    fn seeds_depend_on_name_and_round_only() {
+        assert_eq!(mix(1), mix(1));
+        assert_ne!(hash("bench"), hash("stool"));
+        let u = unit(hash("bench"));
+        assert!((0.0..1.0).contains(&u));
+    }
+}
