@@ -23,6 +23,8 @@
 //! renderer knows nothing of it.
 
 pub mod albedo;
+pub mod best;
+pub mod coverage;
 pub mod fitter;
 pub mod frame;
 pub mod loss;

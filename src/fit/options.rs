@@ -43,6 +43,11 @@ pub struct FitOptions {
     // ---- what the loss compares ---------------------------------------------------------
     /// Silhouette softness in pixels: first round, last round (geometric in between).
     pub sigma: (f64, f64),
+    /// The last round, the finishing passes and the judge of the best point compare area
+    /// coverage ([`crate::render::scene::BOX_FILTER`]: the exact share of each pixel a
+    /// silhouette covers) instead of sigmoid edges: what antialiased pictures show and
+    /// aliased ones sample, so the true numbers are its optimum to a fraction of a pixel.
+    pub coverage: bool,
     pub loss: LossSpec,
     /// Weight of `‖x − x₀‖²` (slots in units of the model's size).
     pub lambda: f64,
@@ -95,6 +100,7 @@ impl Default for FitOptions {
             lambda: 0.001,
             optimizer: Optimizer::sgd(),
             sigma: (2.0, 0.25),
+            coverage: true,
             loss: LossSpec::default(),
             max_step: 0.02,
             fit_shading: true,
