@@ -2,11 +2,13 @@
 //! (the algorithm's constants, below them).
 //!
 //! [`FitOptions::default`] is the paper's loss and schedule (SGD, learning rate 0.05, ten
-//! rounds of 30 steps, σ from 2 to 0.25 pixels), opened by our proportions search and with
-//! an albedo per item. The fields are plain data, grouped by what they set: the schedule,
-//! what the loss compares, how far a step may go, the finishing passes and the pictures.
-//! Lengths are in units of the model's size (the longest side of its bounding box) unless
-//! a field says pixels.
+//! rounds of 30 steps, σ from 2 to 0.25 pixels), opened by our proportions search, with
+//! an albedo per item, and finished on area coverage (`coverage`). The command's
+//! `--schedule far` (`command::fit::Settings::far`) is the recipe for far pictures on top.
+//! The fields are plain data, grouped by what they set: the schedule, what the loss
+//! compares, how far a step may go, the finishing passes and the pictures. Lengths are in
+//! units of the model's size (the longest side of its bounding box) unless a field says
+//! pixels.
 //!
 //! Invariant: every field is a setting someone may want to change; numbers that only the
 //! algorithm's design fixes are constants here, not fields.
