@@ -354,16 +354,12 @@ impl<'a> Fitter<'a> {
         } else {
             self.opts.sigma.1
         };
-        let mut out = self.image_loss(backend, 0, x, sigma, look, false);
-        if let Some(v) = out.per_view.first_mut() {
-            *v += self.reg(x).0;
-        }
-        out
+        self.image_loss(backend, 0, x, sigma, look, false)
     }
 
-    /// Offers `x` to `best` by [`Fitter::judge`] (which refits `look` at `x`).
+    /// Offers `x` to `best` by [`Fitter::judge`] plus the regulariser (refitting `look` at `x`).
     fn offer(&self, backend: &mut dyn Backend, best: &mut Best, x: &[f64], look: &mut Look) {
-        let loss = self.judge(backend, x, look).total();
+        let loss = self.judge(backend, x, look).total() + self.reg(x).0;
         best.offer(x, loss);
     }
 
@@ -557,8 +553,8 @@ impl<'a> Fitter<'a> {
             if let Some(damped) = self.rerun {
                 let mut look_b = start_look;
                 let (xb, steps_b) = self.run_stage(backend, tally, &leg, damped, &mut look_b);
-                let la = self.judge(backend, &best_x, look).total();
-                let lb = self.judge(backend, &xb, &mut look_b).total();
+                let la = self.judge(backend, &best_x, look).total() + self.reg(&best_x).0;
+                let lb = self.judge(backend, &xb, &mut look_b).total() + self.reg(&xb).0;
                 if lb < la {
                     (*look, best_x, best_steps) = (look_b, xb, steps_b);
                 }
