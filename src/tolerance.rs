@@ -264,3 +264,7 @@ pub const ALBEDO_PULL: f64 = 1e-5;
 /// A step projected back onto a violated size guard aims this factor past the bound, so
 /// that rounding does not leave it violated (a relative margin of 1e-6).
 pub const GUARD_MARGIN: f64 = 1.000001;
+
+/// How far, in pixels, a fit started at the truth may leave it: fitted to its own renders,
+/// every face of a model comes back within this of where it was (issue 15).
+pub const FIXED_POINT_PIXELS: f64 = 0.1;

@@ -163,13 +163,13 @@ fn bad_target_folders() {
     let text = d.join("text");
     copy_dir(&good, &text);
     std::fs::write(text.join("front.png"), "hello").unwrap();
-    fails(&text, &["front.png", "not a PNG"]);
-    // Pictures of different sizes.
+    fails(&text, &["front.png", "not a PNG, JPEG or WebP"]);
+    // A picture of another size than cameras.json says.
     let sizes = d.join("sizes");
     copy_dir(&good, &sizes);
     let small = reparamc::render::image::Rgb::new(20, 20, [1.0; 3]);
     std::fs::write(sizes.join("right.png"), small.encode_png()).unwrap();
-    fails(&sizes, &["right.png", "20×20", "one size"]);
+    fails(&sizes, &["right.png", "20×20", "cameras.json"]);
     // Settings out of range name the flag.
     fails_with(
         &good,

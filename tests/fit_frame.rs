@@ -6,7 +6,7 @@ use reparamc::fit::loss::Target;
 use reparamc::fit::{FitOptions, Parametric, Stage, fit};
 use reparamc::render::CpuBackend;
 use reparamc::render::camera::{Camera, default_views};
-use reparamc::render::scene::DEFAULT_SHADE;
+use reparamc::render::scene::{BOX_FILTER, DEFAULT_SHADE};
 use reparamc::render::soft::{prepare_view, render_view};
 use std::path::PathBuf;
 
@@ -56,8 +56,9 @@ fn a_part_just_outside_the_picture_still_costs() {
     let targets: Vec<Target> = cams
         .iter()
         .map(|c| {
-            let v = prepare_view(&scene, c, Some(0.4));
-            Target::from_soft(&render_view(&scene, &v, Some(0.4), DEFAULT_SHADE, false).0)
+            // Drawn as `reparamc render` draws pictures: area coverage.
+            let v = prepare_view(&scene, c, Some(BOX_FILTER));
+            Target::from_soft(&render_view(&scene, &v, Some(BOX_FILTER), DEFAULT_SHADE, false).0)
         })
         .collect();
     // The back as a 6-unit cube (two pixels) eight pixels right of the picture's edge.

@@ -33,9 +33,18 @@ pub struct Args {
     /// Write before / target / after pictures side by side (PNG).
     #[arg(long)]
     gallery: Option<PathBuf>,
-    /// Learning rate (slots in units of the model's size).
-    #[arg(long, default_value_t = 0.05)]
-    lr: f64,
+    /// The schedule the other settings start from: `paper` (the paper's: SGD at 0.05) or
+    /// `far`, the recipe for pictures far from the model (Adam at 0.01, settling, face
+    /// moves and refining moves, a border of 1/8). Flags below override it.
+    #[arg(long, value_enum, default_value_t = ScheduleArg::Paper)]
+    schedule: ScheduleArg,
+    /// Compare sigmoid edges to the end instead of finishing on area coverage (the last
+    /// round, the refining moves and the choice of the result).
+    #[arg(long)]
+    no_coverage: bool,
+    /// Learning rate (slots in units of the model's size) [paper: 0.05, far: 0.01].
+    #[arg(long)]
+    lr: Option<f64>,
     /// Optimiser steps per round.
     #[arg(long, default_value_t = 30)]
     iterations: usize,
@@ -49,9 +58,10 @@ pub struct Args {
     /// Weight of the pull towards the model's own numbers.
     #[arg(long, default_value_t = 0.001)]
     lambda: f64,
-    /// The optimiser (the paper's: SGD; Adam moves far targets faster).
-    #[arg(long, value_enum, default_value_t = OptimizerArg::Sgd)]
-    optimizer: OptimizerArg,
+    /// The optimiser (the paper's: SGD; Adam moves far targets faster) [paper: sgd,
+    /// far: adam].
+    #[arg(long, value_enum)]
+    optimizer: Option<OptimizerArg>,
     /// With Adam, run each stage once: without it, each stage also runs with Adam damped
     /// for numbers whose gradient is faint (it keeps a hollow inside its box) and the run
     /// with the lower loss goes on, at twice the time.
@@ -82,21 +92,23 @@ pub struct Args {
     #[arg(long)]
     relative_steps: bool,
     /// After the rounds, sweeps of single-face moves kept when the loss drops (reaches
-    /// faces hidden behind other parts).
-    #[arg(long, default_value_t = 0)]
-    polish: usize,
+    /// faces hidden behind other parts) [paper: 0, far: 2].
+    #[arg(long)]
+    polish: Option<usize>,
     /// After the face moves, sweeps of single-number and single-face moves of a pixel or
-    /// less, judged with hard edges (brings edges onto the pictures' own pixels).
-    #[arg(long, default_value_t = 0)]
-    refine: usize,
+    /// less, judged on area coverage (hard edges with the paper's schedule) [paper: 0,
+    /// far: 2].
+    #[arg(long)]
+    refine: Option<usize>,
     /// The pictures show the whole object: surround each with a border of background this
-    /// fraction of its height wide, so parts that reach out of the pictures are drawn back.
-    #[arg(long, default_value_t = 0.0, value_parser = fraction)]
-    border: f64,
+    /// fraction of its height wide, so parts that reach out of the pictures are drawn back
+    /// [paper: 0, far: 0.125].
+    #[arg(long, value_parser = fraction)]
+    border: Option<f64>,
     /// In each stage's last round, lower the learning rate linearly by this fraction so
-    /// the stage ends at rest (0: the paper's constant rate; the quality table uses 0.9).
-    #[arg(long, default_value_t = 0.0, value_parser = fraction)]
-    settle: f64,
+    /// the stage ends at rest (0: the paper's constant rate) [paper: 0, far: 0.9].
+    #[arg(long, value_parser = fraction)]
+    settle: Option<f64>,
     /// Skip the opening search over the model's stretch along each axis (it brings a
     /// model that is far from the pictures' proportions within reach of the gradients).
     #[arg(long)]
@@ -110,6 +122,12 @@ pub struct Args {
     max_size: Option<u32>,
     #[command(flatten)]
     backend: BackendArgs,
+}
+
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum ScheduleArg {
+    Paper,
+    Far,
 }
 
 #[derive(Clone, Copy, clap::ValueEnum)]
@@ -151,28 +169,38 @@ fn options(args: &Args, sigma: (f64, f64)) -> Options {
         max_size: args.max_size,
         gallery: args.gallery.is_some(),
         backend: args.backend.into(),
-        settings: Settings {
-            lr: args.lr,
-            iterations: args.iterations,
-            rounds: args.rounds,
-            warm: args.warm,
-            lambda: args.lambda,
-            optimizer: args.optimizer.into(),
-            momentum: args.momentum,
-            single_run: args.single_run,
-            sigma,
-            sharpen: args.sharpen,
-            blur: args.blur,
-            shading: args.shading,
-            levels: args.levels,
-            relative_steps: args.relative_steps,
-            polish: args.polish,
-            refine: args.refine,
-            border: args.border,
-            settle: args.settle,
-            proportions: !args.no_proportions,
-            per_item_albedo: !args.one_colour,
-        },
+        settings: settings(args, sigma),
+    }
+}
+
+/// The schedule's settings with every flag given put in.
+fn settings(args: &Args, sigma: (f64, f64)) -> Settings {
+    let base = match args.schedule {
+        ScheduleArg::Paper => Settings::paper(),
+        ScheduleArg::Far => Settings::far(),
+    };
+    Settings {
+        lr: args.lr.unwrap_or(base.lr),
+        iterations: args.iterations,
+        rounds: args.rounds,
+        warm: args.warm,
+        lambda: args.lambda,
+        optimizer: args.optimizer.map_or(base.optimizer, Into::into),
+        momentum: args.momentum,
+        single_run: args.single_run,
+        sigma,
+        sharpen: args.sharpen,
+        blur: args.blur,
+        shading: args.shading,
+        levels: args.levels,
+        relative_steps: args.relative_steps,
+        polish: args.polish.unwrap_or(base.polish),
+        refine: args.refine.unwrap_or(base.refine),
+        border: args.border.unwrap_or(base.border),
+        settle: args.settle.unwrap_or(base.settle),
+        proportions: !args.no_proportions,
+        per_item_albedo: !args.one_colour,
+        coverage: base.coverage && !args.no_coverage,
     }
 }
 

@@ -81,10 +81,37 @@ pub struct Settings {
     pub proportions: bool,
     /// Fit a brightness per part (`false`: one grey per surface).
     pub per_item_albedo: bool,
+    /// Finish on area coverage (the last round, the refine pass and the judge of the
+    /// best point).
+    pub coverage: bool,
 }
 
+/// The default is the paper's schedule finished on area coverage ([`Settings::paper`]);
+/// [`Settings::far`] is the recipe for pictures far from the model.
 impl Default for Settings {
     fn default() -> Self {
+        Settings::paper()
+    }
+}
+
+impl Settings {
+    /// The README's recipe for pictures far from the model: Adam at 0.01, settling, two
+    /// sweeps of face moves and of refining moves, a border of an eighth of the picture.
+    pub fn far() -> Settings {
+        Settings {
+            lr: 0.01,
+            optimizer: OptimizerChoice::Adam,
+            settle: 0.9,
+            polish: 2,
+            refine: 2,
+            border: 0.125,
+            ..Settings::paper()
+        }
+    }
+
+    /// The paper's schedule (SGD at 0.05, ten rounds of 30 steps), opened by the
+    /// proportions search, with an albedo per item, finished on area coverage.
+    pub fn paper() -> Settings {
         let fit = FitOptions::default();
         let loss = LossSpec::default();
         Settings {
@@ -108,11 +135,10 @@ impl Default for Settings {
             settle: fit.settle,
             proportions: fit.proportions,
             per_item_albedo: fit.per_item_albedo,
+            coverage: fit.coverage,
         }
     }
-}
 
-impl Settings {
     /// The fit's options for these settings.
     fn fit_options(&self) -> FitOptions {
         FitOptions {
@@ -141,6 +167,7 @@ impl Settings {
             border: self.border,
             proportions: self.proportions,
             per_item_albedo: self.per_item_albedo,
+            coverage: self.coverage,
             damped_rerun: (!self.single_run).then_some(DAMPED_FLOOR),
             ..FitOptions::default()
         }

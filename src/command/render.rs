@@ -23,8 +23,9 @@ use std::path::{Path, PathBuf};
 
 pub use crate::render::camera::Projection;
 
-/// Softness of rendered edges (pixels): a little anti-aliasing.
-pub const EDGE_SOFTNESS: f64 = 0.4;
+/// Softness of rendered edges: the box filter, exact area coverage of every pixel (the
+/// antialiasing a picture for people wants, and what `fit` reads back as coverage).
+pub const EDGE_SOFTNESS: f64 = crate::render::scene::BOX_FILTER;
 
 /// Which renderer to use. Neither: the GPU when a hardware adapter is likely, else the
 /// CPU.

@@ -145,33 +145,11 @@ pub fn parse_answer(
 
 /// A PNG or JPEG image.
 pub fn decode_image(bytes: &[u8]) -> Result<Rgb, String> {
-    if bytes.starts_with(b"\x89PNG\r\n\x1a\n") {
-        return Rgb::decode_png(bytes);
-    }
-    if !bytes.starts_with(&[0xff, 0xd8, 0xff]) {
+    let png = bytes.starts_with(b"\x89PNG\r\n\x1a\n");
+    if !png && !bytes.starts_with(&[0xff, 0xd8, 0xff]) {
         return Err("not a PNG or JPEG image".into());
     }
-    let mut dec = jpeg_decoder::Decoder::new(bytes);
-    let pixels = dec.decode().map_err(|e| format!("bad JPEG ({e})"))?;
-    let info = dec.info().ok_or("bad JPEG (no header)")?;
-    let (w, h) = (info.width as u32, info.height as u32);
-    let f = |v: u8| v as f32 / 255.0;
-    let data: Vec<[f32; 3]> = match info.pixel_format {
-        jpeg_decoder::PixelFormat::L8 => pixels.iter().map(|&v| [f(v); 3]).collect(),
-        jpeg_decoder::PixelFormat::RGB24 => pixels
-            .chunks_exact(3)
-            .map(|p| [f(p[0]), f(p[1]), f(p[2])])
-            .collect(),
-        other => return Err(format!("unsupported JPEG pixel format {other:?}")),
-    };
-    if w == 0 || h == 0 || data.len() != (w * h) as usize {
-        return Err("bad JPEG (size)".into());
-    }
-    Ok(Rgb {
-        width: w,
-        height: h,
-        data,
-    })
+    Rgb::decode_picture(bytes)
 }
 
 /// One request's images, or why there are none.

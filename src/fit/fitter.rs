@@ -9,6 +9,7 @@
 //! drawable degenerate; the lighting (`Look`) is refitted at the start of every round and
 //! after every pass, always on the hard surface at full size.
 
+use super::best::Best;
 use super::loss::{LossSpec, Target};
 use super::optimize::{self, OptState, Optimizer, Space};
 use super::options::{
@@ -18,7 +19,7 @@ use super::options::{
 use super::{Parametric, Stage, albedo, frame, polish, proportions, stages};
 use crate::ir::Affine;
 use crate::render::camera::Camera;
-use crate::render::scene::{DEFAULT_SHADE, NSHADE};
+use crate::render::scene::{BOX_FILTER, DEFAULT_SHADE, NSHADE};
 use crate::render::soft::{ViewPrep, prepare_view};
 use crate::render::{Backend, ImageValues};
 use crate::tolerance::GUARD_MARGIN;
@@ -304,7 +305,9 @@ impl<'a> Fitter<'a> {
         })
     }
 
-    /// Runs the fit: the proportions search, the stages, the finishing passes.
+    /// Runs the fit: the proportions search, the stages, the finishing passes. Returns the
+    /// best point it stood on by the loss the schedule ends with ([`Fitter::judge`]): the
+    /// start, or where the proportions search, a stage or a pass ended.
     pub fn run(&self, backend: &mut dyn Backend, progress: &mut dyn FnMut(&Progress)) -> FitResult {
         let runs = if self.rerun.is_some() { 2 } else { 1 };
         let mut tally = Tally {
@@ -317,31 +320,47 @@ impl<'a> Fitter<'a> {
             shades: vec![DEFAULT_SHADE; self.cameras.len()],
             albedo: Vec::new(),
         };
-        self.refit_shades(backend, &problem.x0, &mut look);
-        let sharp = self.opts.sigma.1;
-        let start_loss = self
-            .image_loss(backend, 0, &problem.x0, sharp, &look, false)
-            .per_view;
+        let start_loss = self.judge(backend, &problem.x0, &mut look).per_view;
+        let mut best = Best::new(problem.x0.clone(), start_loss.iter().sum());
         let mut x = problem.x0.clone();
         if self.opts.proportions {
             x = self.proportions(backend, x, &look);
-            self.refit_shades(backend, &x, &mut look);
+            self.offer(backend, &mut best, &x, &mut look);
         }
-        let (x, curve) = self.run_stages(backend, &mut tally, x, &mut look);
+        let (x, curve) = self.run_stages(backend, &mut tally, x, &mut look, &mut best);
         self.refit_shades(backend, &x, &mut look);
-        let x = self.finish(backend, x, &mut look);
-        let end_loss = self
-            .image_loss(backend, 0, &x, sharp, &look, false)
-            .per_view;
+        self.finish(backend, x, &mut look, &mut best);
+        let end_loss = self.judge(backend, &best.x, &mut look).per_view;
         FitResult {
             x0: problem.x0.clone(),
-            x,
+            x: best.x,
             curve,
             start_loss,
             end_loss,
             shades: look.shades,
             albedo: look.albedo,
         }
+    }
+
+    /// The loss a fit is judged by, per view, at `x` (the lighting refitted there first):
+    /// the loss of the schedule's last pass: area coverage with [`FitOptions::coverage`],
+    /// else hard-edged with [`FitOptions::refine`], else at the last round's softness; plus the regulariser, counted in the first view.
+    fn judge(&self, backend: &mut dyn Backend, x: &[f64], look: &mut Look) -> ImageValues {
+        self.refit_shades(backend, x, look);
+        let sigma = if self.opts.coverage {
+            BOX_FILTER
+        } else if self.opts.refine > 0 {
+            HARD_SIGMA
+        } else {
+            self.opts.sigma.1
+        };
+        self.image_loss(backend, 0, x, sigma, look, false)
+    }
+
+    /// Offers `x` to `best` by [`Fitter::judge`] plus the regulariser (refitting `look` at `x`).
+    fn offer(&self, backend: &mut dyn Backend, best: &mut Best, x: &[f64], look: &mut Look) {
+        let loss = self.judge(backend, x, look).total() + self.reg(x).0;
+        best.offer(x, loss);
     }
 
     /// The cameras and targets of level `level` (0: full size). Only levels up to
@@ -356,10 +375,13 @@ impl<'a> Fitter<'a> {
         }
     }
 
-    /// Silhouette softness of round `r`: geometric from `sigma.0` to `sigma.1`.
+    /// Silhouette softness of round `r`: geometric from `sigma.0` to `sigma.1`; the box
+    /// filter in the last round with [`FitOptions::coverage`].
     fn sigma_at(&self, r: usize) -> f64 {
         let (first, last) = self.opts.sigma;
-        if self.rounds == 1 {
+        if self.opts.coverage && r + 1 == self.rounds {
+            BOX_FILTER
+        } else if self.rounds == 1 {
             last
         } else {
             let f = r as f64 / (self.rounds - 1) as f64;
@@ -507,13 +529,15 @@ impl<'a> Fitter<'a> {
     }
 
     /// Every stage from `x`, each from where the previous one ended; with a damped rerun,
-    /// the run with the lower final loss goes on. The end point and the kept runs' steps.
+    /// the run with the lower final loss goes on. Each stage's end is offered to `best`.
+    /// The end point and the kept runs' steps.
     fn run_stages(
         &self,
         backend: &mut dyn Backend,
         tally: &mut Tally,
         mut x: Vec<f64>,
         look: &mut Look,
+        best: &mut Best,
     ) -> (Vec<f64>, Vec<Step>) {
         let mut curve = Vec::with_capacity(tally.total_steps);
         let mut round = 0;
@@ -529,8 +553,8 @@ impl<'a> Fitter<'a> {
             if let Some(damped) = self.rerun {
                 let mut look_b = start_look;
                 let (xb, steps_b) = self.run_stage(backend, tally, &leg, damped, &mut look_b);
-                let la = self.final_loss(backend, &best_x, look);
-                let lb = self.final_loss(backend, &xb, &mut look_b);
+                let la = self.judge(backend, &best_x, look).total() + self.reg(&best_x).0;
+                let lb = self.judge(backend, &xb, &mut look_b).total() + self.reg(&xb).0;
                 if lb < la {
                     (*look, best_x, best_steps) = (look_b, xb, steps_b);
                 }
@@ -538,6 +562,8 @@ impl<'a> Fitter<'a> {
             curve.extend(best_steps);
             x = best_x;
             round += stage.rounds;
+            let mut judged = look.clone();
+            self.offer(backend, best, &x, &mut judged);
         }
         (x, curve)
     }
@@ -637,18 +663,10 @@ impl<'a> Fitter<'a> {
         }
     }
 
-    /// The final loss of a candidate, on the hard surface's shading as the fit ends.
-    fn final_loss(&self, backend: &mut dyn Backend, x: &[f64], look: &mut Look) -> f64 {
-        self.refit_shades(backend, x, look);
-        self.image_loss(backend, 0, x, self.opts.sigma.1, look, false)
-            .total()
-            + self.reg(x).0
-    }
-
     /// The finishing passes the options ask for: face moves ([`polish`]), then moves of a
     /// pixel or less on hard edges ([`polish::refine`]), each followed by a refit of the
-    /// lighting.
-    fn finish(&self, backend: &mut dyn Backend, mut x: Vec<f64>, look: &mut Look) -> Vec<f64> {
+    /// lighting and offered to `best`.
+    fn finish(&self, backend: &mut dyn Backend, mut x: Vec<f64>, look: &mut Look, best: &mut Best) {
         let problem = &*self.problem;
         let valid = |x: &[f64]| self.valid(x);
         if self.opts.polish > 0 {
@@ -657,7 +675,7 @@ impl<'a> Fitter<'a> {
                 self.image_loss(backend, 0, x, sigma, look, false).total() + self.reg(x).0
             };
             x = polish(problem, x, self.opts.polish, &mut eval, &valid);
-            self.refit_shades(backend, &x, look);
+            self.offer(backend, best, &x, look);
         }
         if self.opts.refine > 0 {
             let pixel = self
@@ -665,15 +683,17 @@ impl<'a> Fitter<'a> {
                 .iter()
                 .map(Camera::pixel_size)
                 .fold(f64::INFINITY, f64::min);
+            let edges = if self.opts.coverage {
+                BOX_FILTER
+            } else {
+                HARD_SIGMA
+            };
             let mut eval = |x: &[f64]| {
-                self.image_loss(backend, 0, x, HARD_SIGMA, look, false)
-                    .total()
-                    + self.reg(x).0
+                self.image_loss(backend, 0, x, edges, look, false).total() + self.reg(x).0
             };
             x = polish::refine(problem, x, pixel, self.opts.refine, &mut eval, &valid);
-            self.refit_shades(backend, &x, look);
+            self.offer(backend, best, &x, look);
         }
-        x
     }
 }
 

@@ -69,8 +69,8 @@ const FG_HI: f32 = 0.03;
 
 impl Target {
     /// Channels of a picture on a plain background: the background colour is the most
-    /// common colour along the border; a pixel's coverage rises from 0 to 1 as its colour
-    /// moves away from it.
+    /// common colour along the border; a pixel's coverage is how much of it the object
+    /// covers, unmixed from the background ([`super::coverage`]).
     pub fn from_rgb(img: &Rgb) -> Target {
         let background = border_colour(img);
         let grey = img.luminance();
@@ -84,12 +84,12 @@ impl Target {
         border.sort_by(f32::total_cmp);
         let noise = border.get(border.len() * 9 / 10).copied().unwrap_or(0.0);
         let (lo, hi) = (FG_LO.max(3.0 * noise), FG_HI.max(6.0 * noise));
-        let m: Vec<f32> = img
-            .data
+        let (m, s) = super::coverage::unmix(img, background, lo, hi);
+        let grey = grey
             .iter()
-            .map(|c| smoothstep(lo, hi, dist(c)))
+            .zip(m.iter().zip(&s))
+            .map(|(&g, (&m, &s))| if m > COVERAGE_FLOOR { s / m } else { g })
             .collect();
-        let s = m.iter().zip(&grey).map(|(m, g)| m * g).collect();
         Target {
             width: img.width,
             height: img.height,
@@ -175,11 +175,6 @@ impl Target {
     pub fn foreground(&self) -> usize {
         self.m.iter().filter(|&&m| m > 0.5).count()
     }
-}
-
-fn smoothstep(a: f32, b: f32, x: f32) -> f32 {
-    let t = ((x - a) / (b - a)).clamp(0.0, 1.0);
-    t * t * (3.0 - 2.0 * t)
 }
 
 fn border_pixels(img: &Rgb) -> Vec<[f32; 3]> {

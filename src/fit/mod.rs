@@ -10,12 +10,16 @@
 //! rounds see sharp. With Adam, each stage also runs damped from the same start and the
 //! run with the lower loss goes on ([`FitOptions::damped_rerun`]). Optional finishing
 //! passes move single faces ([`polish`]) and then single numbers and faces by a pixel or
-//! less on hard edges ([`polish::refine`]); pictures may be seen inside a border of
-//! background ([`frame`]).
+//! less on hard edges or area coverage ([`polish::refine`]); pictures may be seen inside a
+//! border of background ([`frame`]). With [`FitOptions::coverage`] the last round, the
+//! refining moves and the judge compare exact area coverage per pixel; pictures are read
+//! as coverage ([`coverage`]). The fit returns the best point it stood on by the loss it
+//! ends with ([`best`]).
 //!
 //! The module map: [`options`] holds the settings and the algorithm's constants;
 //! [`parametric`] the model prepared for fitting (scenes and gradients at any slot values);
-//! [`fitter`] the fit itself ([`fit`], a [`Fitter`]); [`loss`] the image loss; [`optimize`]
+//! [`fitter`] the fit itself ([`fit`], a [`Fitter`]); [`best`] the point it returns;
+//! [`loss`] the image loss; [`coverage`] pictures read as coverage; [`optimize`]
 //! the update rules and the spaces they move in; [`stages`], [`proportions`], [`albedo`],
 //! [`polish`], [`frame`] the pieces named above; [`targets`] reads target folders.
 //!
@@ -23,6 +27,8 @@
 //! renderer knows nothing of it.
 
 pub mod albedo;
+pub mod best;
+pub mod coverage;
 pub mod fitter;
 pub mod frame;
 pub mod loss;

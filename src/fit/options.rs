@@ -2,11 +2,13 @@
 //! (the algorithm's constants, below them).
 //!
 //! [`FitOptions::default`] is the paper's loss and schedule (SGD, learning rate 0.05, ten
-//! rounds of 30 steps, σ from 2 to 0.25 pixels), opened by our proportions search and with
-//! an albedo per item. The fields are plain data, grouped by what they set: the schedule,
-//! what the loss compares, how far a step may go, the finishing passes and the pictures.
-//! Lengths are in units of the model's size (the longest side of its bounding box) unless
-//! a field says pixels.
+//! rounds of 30 steps, σ from 2 to 0.25 pixels), opened by our proportions search, with
+//! an albedo per item, and finished on area coverage (`coverage`). The command's
+//! `--schedule far` (`command::fit::Settings::far`) is the recipe for far pictures on top.
+//! The fields are plain data, grouped by what they set: the schedule, what the loss
+//! compares, how far a step may go, the finishing passes and the pictures. Lengths are in
+//! units of the model's size (the longest side of its bounding box) unless a field says
+//! pixels.
 //!
 //! Invariant: every field is a setting someone may want to change; numbers that only the
 //! algorithm's design fixes are constants here, not fields.
@@ -43,6 +45,11 @@ pub struct FitOptions {
     // ---- what the loss compares ---------------------------------------------------------
     /// Silhouette softness in pixels: first round, last round (geometric in between).
     pub sigma: (f64, f64),
+    /// The last round, the finishing passes and the judge of the best point compare area
+    /// coverage ([`crate::render::scene::BOX_FILTER`]: the exact share of each pixel a
+    /// silhouette covers) instead of sigmoid edges: what antialiased pictures show and
+    /// aliased ones sample, so the true numbers are its optimum to a fraction of a pixel.
+    pub coverage: bool,
     pub loss: LossSpec,
     /// Weight of `‖x − x₀‖²` (slots in units of the model's size).
     pub lambda: f64,
@@ -95,6 +102,7 @@ impl Default for FitOptions {
             lambda: 0.001,
             optimizer: Optimizer::sgd(),
             sigma: (2.0, 0.25),
+            coverage: true,
             loss: LossSpec::default(),
             max_step: 0.02,
             fit_shading: true,

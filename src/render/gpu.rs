@@ -9,9 +9,9 @@
 //! runs again with more room when the entry buffers overflowed. On a machine without a GPU, Mesa's lavapipe provides a
 //! Vulkan device that runs the shader on the CPU.
 
-use super::scene::{Kind, NSHADE, Op, PartGeom, Scene};
+use super::scene::{Kind, NSHADE, Op, PartGeom, Scene, is_box};
 use super::soft::{Entries, Entry, HardImage, SoftImage, SurfaceEntry, ViewPrep};
-use super::{Backend, ImageFunction, ImageValues, sum_views, view_value};
+use super::{Backend, CpuBackend, ImageFunction, ImageValues, sum_views, view_value};
 use bytemuck::{Pod, Zeroable};
 use glam::DVec3;
 use wgpu::util::DeviceExt;
@@ -656,6 +656,10 @@ impl Backend for GpuBackend {
         sigma: Option<f64>,
         shades: &[[f64; NSHADE]],
     ) -> Vec<(SoftImage, HardImage)> {
+        if sigma.is_some_and(is_box) {
+            // The shader has no box filter: the CPU reference draws it.
+            return CpuBackend.render(scene, views, sigma, shades);
+        }
         let (s, h, _) = self.dispatch(scene, views, sigma, shades, false);
         s.into_iter().zip(h).collect()
     }
@@ -669,6 +673,9 @@ impl Backend for GpuBackend {
         f: &dyn ImageFunction,
         grad: bool,
     ) -> ImageValues {
+        if is_box(sigma) {
+            return CpuBackend.evaluate(scene, views, sigma, shades, f, grad);
+        }
         let (softs, _, entries) = self.dispatch(scene, views, Some(sigma), shades, grad);
         let outs = softs
             .iter()

@@ -116,6 +116,37 @@ impl Rgb {
         Rgb::decode_png(&bytes)
     }
 
+    /// Reads a PNG, JPEG or WebP picture, told apart by its content, not its name.
+    pub fn read_picture(path: &Path) -> Result<Rgb, String> {
+        let bytes = std::fs::read(path).map_err(|e| format!("cannot read it: {e}"))?;
+        if bytes.is_empty() {
+            return Err("the file is empty".into());
+        }
+        Rgb::decode_picture(&bytes)
+    }
+
+    /// Decodes a PNG, JPEG or WebP picture, told apart by its content.
+    pub fn decode_picture(bytes: &[u8]) -> Result<Rgb, String> {
+        if bytes.starts_with(b"\x89PNG\r\n\x1a\n") {
+            return Rgb::decode_png(bytes);
+        }
+        let format = match image::guess_format(bytes) {
+            Ok(f @ (image::ImageFormat::Jpeg | image::ImageFormat::WebP)) => f,
+            _ => return Err("not a PNG, JPEG or WebP image".into()),
+        };
+        let img = image::load_from_memory_with_format(bytes, format)
+            .map_err(|e| format!("cannot decode it: {e}"))?
+            .to_rgb8();
+        Ok(Rgb {
+            width: img.width(),
+            height: img.height(),
+            data: img
+                .pixels()
+                .map(|p| p.0.map(|v| f32::from(v) / 255.0))
+                .collect(),
+        })
+    }
+
     /// Resamples to another size (box filter when shrinking, bilinear when growing).
     pub fn resize(&self, width: u32, height: u32) -> Rgb {
         if width == self.width && height == self.height {

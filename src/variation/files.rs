@@ -60,6 +60,15 @@ impl<'a> Lexed<'a> {
         is_minus && self.is_number(k + 1) && unary
     }
 
+    /// Whether tokens `k..k + 4` are a parenthesised negative number, `(-0.23)`.
+    fn parenthesised_negative(&self, k: usize) -> bool {
+        let punct = |k: usize, p: &str| {
+            self.get(k)
+                .is_some_and(|t| t.kind == TokenKind::Punct && t.text(self.text) == p)
+        };
+        punct(k, "(") && punct(k + 1, "-") && self.is_number(k + 2) && punct(k + 3, ")")
+    }
+
     /// How a diagnostic names token `k`.
     fn describe(&self, k: usize) -> String {
         match self.get(k) {
@@ -103,11 +112,22 @@ fn number_at(lexed: &Lexed<'_>, k: usize, negated: bool) -> Option<(f64, usize)>
 }
 
 /// Matches the variant's tokens to the model's; on the first place where anything but a
-/// number (or a sign in front of one) differs, returns the indices of the two tokens there.
+/// number (or a sign in front of one, or a negative number in parentheses) differs, returns the indices of the two tokens there.
 fn match_tokens(model: &Lexed<'_>, variant: &Lexed<'_>) -> Result<Numbers, (usize, usize)> {
     let mut numbers = Numbers::new();
     let (mut i, mut j) = (0, 0);
     while i < model.tokens.len() || j < variant.tokens.len() {
+        // A number may become a parenthesised negative one (how `fit` writes a number that
+        // went below zero, so that `x - 0` does not become `x - -0.23`): `0` → `(-0.23)`.
+        if let Some(at) = model.get(i)
+            && model.is_number(i)
+            && variant.parenthesised_negative(j)
+            && let Some(value) = number_at(variant, j + 2, true)
+        {
+            numbers.insert(at.start, value);
+            (i, j) = (i + 1, j + 4);
+            continue;
+        }
         // A sign may appear or disappear in front of a number: `0` → `-22.5`.
         if let (Some(at), true) = (model.get(i), variant.negated_number(j))
             && model.is_number(i)
@@ -316,6 +336,26 @@ fn check_frozen(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn fitted_numbers_below_zero_load_back() {
+        // What `fit` writes when a number goes below zero, wherever it stands.
+        let model = "w = 2; translate([0, 5 - 1, 0]) cube([w, 3, 1]);";
+        let fitted = "w = (-0.5); translate([(-0.23), 5 - (-1.5), 0]) cube([w, 3, 1]);";
+        let numbers = match_tokens(&Lexed::new(model), &Lexed::new(fitted)).unwrap();
+        let mut got: Vec<(usize, f64)> = numbers.iter().map(|(&k, &(v, _))| (k, v)).collect();
+        got.sort_by_key(|g| g.0);
+        let values: Vec<f64> = got.iter().map(|g| g.1).collect();
+        assert_eq!(values, vec![-0.5, -0.23, 5.0, -1.5, 0.0, 3.0, 1.0]);
+        // Anything else in parentheses is still a change of structure.
+        assert!(
+            match_tokens(
+                &Lexed::new(model),
+                &Lexed::new(&fitted.replace("(-0.23)", "(0.23)"))
+            )
+            .is_err()
+        );
+    }
 
     #[test]
     fn tokens_skip_comments_and_keep_numbers() {

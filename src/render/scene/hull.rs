@@ -63,7 +63,8 @@ impl Hull {
         let mut c = Coverage {
             alpha: 0.0,
             s: s1,
-            edges: [(e1 as u32, 0.0), (0, 0.0)],
+            edges: [(e1 as u32, 0.0); COVERAGE_EDGES],
+            at: [u; COVERAGE_EDGES],
             n: 0,
         };
         let band = CUTOFF * sigma;
@@ -125,6 +126,10 @@ impl Hull {
     }
 }
 
+/// Most edges a pixel's coverage depends on (a box filter's pixel may see a corner and a
+/// far side; more than this are left out of the gradient).
+pub const COVERAGE_EDGES: usize = 4;
+
 /// A pixel's soft coverage of one hull.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Coverage {
@@ -132,7 +137,10 @@ pub struct Coverage {
     /// Signed distance to the nearest edge (pixels, positive inside).
     pub s: f64,
     /// `(edge, ∂α/∂s_edge)` for the first `n` entries.
-    pub edges: [(u32, f64); 2],
+    pub edges: [(u32, f64); COVERAGE_EDGES],
+    /// Where each edge's `∂s` is taken: the pixel's centre for a sigmoid, the middle of the
+    /// edge's piece inside the pixel for the box filter.
+    pub at: [[f64; 2]; COVERAGE_EDGES],
     pub n: usize,
 }
 

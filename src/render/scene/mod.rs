@@ -9,7 +9,8 @@
 //! Per view, each part's silhouette is the convex hull of its projected sample points (box
 //! corners; points around a frustum's end circles; the tangency circle of a sphere), and a
 //! pixel's *coverage* of the part is `sigmoid(s/σ)` with `s` the signed distance (pixels,
-//! positive inside) from the pixel center to that hull. Derivatives of `s` with respect to
+//! positive inside) from the pixel center to that hull, or with the box filter
+//! ([`BOX_FILTER`]) the exact share of the pixel square inside it (`area`). Derivatives of `s` with respect to
 //! the hull's vertices, and of the vertices with respect to `θ`, give the gradient. Moving
 //! sample points as material points gives the silhouette's first-order motion exactly (the
 //! silhouette is an envelope), so the derivatives hold for curved parts too.
@@ -21,16 +22,20 @@
 //!
 //! This module owns the part geometry (`PartGeom`, its world/local maps and nearest-face
 //! distance), the parameter forms and the `Scene`; `intersect` owns exact ray passages,
-//! `items` the boolean programs, `hull` the per-view silhouettes and their jacobians.
+//! `items` the boolean programs, `hull` the per-view silhouettes and their jacobians, `area` the box filter.
 
 // Geometry here indexes several arrays by axis; index loops read best.
 #![allow(clippy::needless_range_loop)]
 
+mod area;
 mod hull;
 mod intersect;
 mod items;
 
-pub use hull::{Coverage, Hull, Sample, hull, logistic, ring_count, sample_jacobian, samples};
+pub use area::{BOX_EQUIVALENT_SIGMA, BOX_FILTER, is_box, sigmoid_sigma, visible_areas};
+pub use hull::{
+    COVERAGE_EDGES, Coverage, Hull, Sample, hull, logistic, ring_count, sample_jacobian, samples,
+};
 pub use items::{Item, Op, eval_inside, eval_soft, items_of};
 
 use super::camera::unit;

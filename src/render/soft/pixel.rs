@@ -12,8 +12,8 @@ use super::visible::{first_solid_from, visible_surface, visible_surface_at};
 use super::{HULL_MARGIN, ViewPrep};
 use crate::render::camera::Frame;
 use crate::render::scene::{
-    CUTOFF, Coverage, Hit, Item, NSHADE, PartGeom, Scene, SurfacePoint, eval_inside, eval_soft,
-    logistic, shade_features,
+    COVERAGE_EDGES, CUTOFF, Coverage, Hit, Item, NSHADE, PartGeom, Scene, SurfacePoint,
+    eval_inside, eval_soft, is_box, logistic, shade_features, sigmoid_sigma, visible_areas,
 };
 use crate::tolerance::{PIXEL_SCALE_FLOOR, RENDER_ROUNDOFF};
 use glam::DVec3;
@@ -103,7 +103,8 @@ impl PixelCtx<'_> {
             cov: Coverage {
                 alpha: 0.0,
                 s: f64::NEG_INFINITY,
-                edges: [(0, 0.0); 2],
+                edges: [(0, 0.0); COVERAGE_EDGES],
+                at: [u; COVERAGE_EDGES],
                 n: 0,
             },
             hit: None,
@@ -115,13 +116,15 @@ impl PixelCtx<'_> {
         if let Some(h) = &self.prep.hulls[p] {
             st.hull = true;
             st.cov = match self.sigma {
+                Some(sigma) if is_box(sigma) => h.area_coverage(u),
                 Some(sigma) => h.coverage(u, sigma),
                 None => {
                     let (s, e) = h.signed_distance(u);
                     Coverage {
                         alpha: 0.0,
                         s,
-                        edges: [(e as u32, 0.0), (0, 0.0)],
+                        edges: [(e as u32, 0.0); COVERAGE_EDGES],
+                        at: [u; COVERAGE_EDGES],
                         n: 0,
                     }
                 }
@@ -180,9 +183,14 @@ impl PixelCtx<'_> {
             }
             self.item_layer(idx, item, u, o, d, scratch, &mut best_hard);
         }
-        let (m, s) = composite(&mut scratch.layers);
+        let (mut m, mut s) = composite(&mut scratch.layers);
+        if self.sigma.is_some_and(is_box)
+            && let Some(exact) = self.union_composite(u, scratch)
+        {
+            (m, s) = exact;
+        }
         if let (Some(entries), Some(_)) = (entries, self.sigma) {
-            self.record_entries(scratch, u, py * frame.width + px, entries);
+            self.record_entries(scratch, py * frame.width + px, entries);
         }
         let (item, normal, depth) = match best_hard {
             Some((t, i, n)) => (i, frame.to_eye(n), t),
@@ -195,6 +203,36 @@ impl PixelCtx<'_> {
             normal,
             depth,
         }
+    }
+
+    /// With the box filter, `(M, S)` of layers (sorted by depth) as what they are, areas:
+    /// `M` the area of their union, and each layer's shade weighted by the area it adds to
+    /// what lies in front of it ([`visible_areas`]). Compositing coverages as independent
+    /// makes a seam between two touching parts (half a pixel each) a quarter background.
+    /// `None` (composite as independent) unless two or more layers cover the pixel partly
+    /// and every layer is a plain part with a hull. The gradient entries stay those of
+    /// independent compositing.
+    fn union_composite(&self, u: [f64; 2], scratch: &Scratch) -> Option<(f64, f64)> {
+        let layers = &scratch.layers;
+        if layers.iter().filter(|l| l.alpha < 1.0).count() < 2 {
+            return None;
+        }
+        let mut polys: Vec<Vec<[f64; 2]>> = Vec::with_capacity(layers.len());
+        for l in layers {
+            let item = &self.scene.items[l.item as usize];
+            if l.split || !item.is_single() {
+                return None;
+            }
+            polys.push(self.prep.hulls[item.parts[0]].as_ref()?.pixel_polygon(u));
+        }
+        let shares = visible_areas(u, &polys)?;
+        let m: f64 = shares.iter().sum();
+        let s = layers
+            .iter()
+            .zip(&shares)
+            .map(|(l, a)| a * l.premult / l.alpha)
+            .sum();
+        Some((m.min(1.0), s))
     }
 
     /// Item `idx` at this pixel: its parts' states (kept in the scratch while the item has a
@@ -434,6 +472,7 @@ impl PixelCtx<'_> {
                     if inside { 0.0 } else { 1.0 }
                 }
                 Some(sigma) => {
+                    let sigma = sigmoid_sigma(sigma);
                     let Some(sp) = gb.surface_distance(pa) else {
                         continue;
                     };
@@ -472,13 +511,7 @@ impl PixelCtx<'_> {
 
     /// The pixel's gradient entries: how `M` and `S` change with every soft edge and cut
     /// of the composited layers.
-    fn record_entries(
-        &self,
-        scratch: &mut Scratch,
-        u: [f64; 2],
-        pixel: u32,
-        entries: &mut Entries,
-    ) {
+    fn record_entries(&self, scratch: &mut Scratch, pixel: u32, entries: &mut Entries) {
         let Scratch {
             layers,
             states,
@@ -520,7 +553,7 @@ impl PixelCtx<'_> {
             };
             let dm_dc = dm_da * a_factor;
             let ds_dc = ds_da * a_factor + ds_dp * p_factor;
-            self.edge_entries(&l, mine, (dm_dc, ds_dc), u, pixel, entries);
+            self.edge_entries(&l, mine, (dm_dc, ds_dc), pixel, entries);
             // Subtracted parts, through κ.
             if !l.split {
                 continue;
@@ -542,7 +575,6 @@ impl PixelCtx<'_> {
         l: &Layer,
         mine: &[(u32, PartAt)],
         (dm_dc, ds_dc): (f64, f64),
-        u: [f64; 2],
         pixel: u32,
         entries: &mut Entries,
     ) {
@@ -564,9 +596,9 @@ impl PixelCtx<'_> {
             let Some(h) = &self.prep.hulls[p as usize] else {
                 continue;
             };
-            for &(edge, dalpha_ds) in &st.cov.edges[..st.cov.n] {
+            for (&(edge, dalpha_ds), &at) in st.cov.edges[..st.cov.n].iter().zip(&st.cov.at) {
                 let f = da_item * dalpha_ds;
-                let (ga, gb) = h.edge_gradient(edge as usize, u);
+                let (ga, gb) = h.edge_gradient(edge as usize, at);
                 entries.edges.push(Entry {
                     pixel,
                     part: p,
