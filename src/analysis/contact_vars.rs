@@ -15,19 +15,13 @@
 //! read back as small fractions like the solve's); one side is made a variable per call.
 
 use super::contacts::ContactSide;
-use super::ranges::{Range, in_free, size_forms};
+use super::ranges::{Range, in_free, min_over_box, size_forms};
 use super::reparam::{ContactVariable, Frac, Solution};
 use crate::ir::Model;
 use crate::tolerance::COEFFICIENT_ZERO;
 
-/// The side's smallest value over the box of ranges.
-fn box_min(c: f64, a: &[f64], ranges: &[Range]) -> f64 {
-    c + a
-        .iter()
-        .zip(ranges)
-        .map(|(&k, r)| (k * r.min).min(k * r.max))
-        .sum::<f64>()
-}
+/// A form in the free variables: `(constant, coefficient per free variable)`.
+type InFree = (f64, Vec<f64>);
 
 /// Free variables that set no size of any part (they only move parts).
 fn positions(model: &Model, sol: &Solution) -> Vec<bool> {
@@ -65,7 +59,8 @@ pub fn make_one_contact_variable(
     slack: f64,
 ) -> bool {
     let places = positions(model, sol);
-    let mut worst: Option<(f64, usize, usize)> = None;
+    // (deficit, side, variable to replace, the side in the free variables)
+    let mut worst: Option<(f64, usize, usize, InFree)> = None;
     for (k, side) in contacts.iter().enumerate() {
         let (c, a) = in_free(&side.form, sol);
         let live: Vec<usize> = (0..a.len())
@@ -75,7 +70,8 @@ pub fn make_one_contact_variable(
             continue;
         }
         let at_input = c + a.iter().zip(input).map(|(x, y)| x * y).sum::<f64>();
-        let deficit = at_input.min(0.0) - slack - box_min(c, &a, ranges);
+        let deficit =
+            at_input.min(0.0) - slack - min_over_box(c, &a, |i| (ranges[i].min, ranges[i].max));
         // The variable to replace: one that only places a part, the last shown.
         let Some(&j) = live
             .iter()
@@ -84,11 +80,11 @@ pub fn make_one_contact_variable(
         else {
             continue;
         };
-        if deficit > 0.0 && worst.is_none_or(|(d, _, _)| deficit > d) {
-            worst = Some((deficit, k, j));
+        if deficit > 0.0 && worst.as_ref().is_none_or(|w| deficit > w.0) {
+            worst = Some((deficit, k, j, (c, a)));
         }
     }
-    let Some((_, k, j)) = worst else {
+    let Some((_, k, j, side_in_free)) = worst else {
         return false;
     };
     let side = &contacts[k];
@@ -100,7 +96,7 @@ pub fn make_one_contact_variable(
     } else {
         side.parts[0]
     };
-    substitute(sol, &in_free(&side.form, sol), j);
+    substitute(sol, &side_in_free, j);
     sol.contacts.push(ContactVariable {
         index: j,
         parts: [moved, other],

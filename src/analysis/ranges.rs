@@ -186,8 +186,16 @@ pub fn ranges(
 
 /// The bound's smallest value over the box `[lo, hi]` (exact: it is affine).
 fn box_min(b: &Bound, lo: &[f64], hi: &[f64]) -> f64 {
-    b.c + (0..lo.len())
-        .map(|i| (b.a[i] * lo[i]).min(b.a[i] * hi[i]))
+    min_over_box(b.c, &b.a, |i| (lo[i], hi[i]))
+}
+
+/// The smallest value of `c + a·x` over the box whose side `i` is `side(i)` = `(lo, hi)`.
+pub(crate) fn min_over_box(c: f64, a: &[f64], side: impl Fn(usize) -> (f64, f64)) -> f64 {
+    c + (0..a.len())
+        .map(|i| {
+            let (lo, hi) = side(i);
+            (a[i] * lo).min(a[i] * hi)
+        })
         .sum::<f64>()
 }
 
