@@ -110,6 +110,59 @@ fn render_then_fit_round_trip() {
     assert_eq!(rep["curve"].as_array().unwrap().len(), 6);
     let png = reparamc::render::image::Rgb::read_png(&gallery).unwrap();
     assert_eq!(png.width, 3 * 40 + 4);
+    // Beside it, its uncertainty: every number the pictures show, with its deviation,
+    // and the summary says how many they do not.
+    let side: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(d.join("fitted.json")).unwrap()).unwrap();
+    assert_eq!(side["format"], "reparamc-fit-uncertainty/1");
+    let numbers = side["numbers"].as_array().unwrap();
+    assert!(!numbers.is_empty() && numbers.len() <= base.slots.len());
+    assert_eq!(side["information"].as_array().unwrap().len(), numbers.len());
+    assert!(stderr(&o).contains("numbers the pictures do not determine"));
+    // The main command reads it back with the variation.
+    let o = bin()
+        .arg(repo("examples/chair.scad"))
+        .arg("--vary")
+        .arg(&out)
+        .arg("-o")
+        .arg(d.join("param.scad"))
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", stderr(&o));
+    // A stale sidecar (the variant edited after the fit: here, the sidecar's record of a
+    // number) is an error that names it.
+    let mut stale = side.clone();
+    let v = stale["numbers"][0]["value"].as_f64().unwrap();
+    stale["numbers"][0]["value"] = serde_json::json!(v + 1.0);
+    std::fs::write(d.join("fitted.json"), stale.to_string()).unwrap();
+    let o = bin()
+        .arg(repo("examples/chair.scad"))
+        .arg("--vary")
+        .arg(&out)
+        .arg("-o")
+        .arg(d.join("param2.scad"))
+        .output()
+        .unwrap();
+    assert!(!o.status.success());
+    assert!(stderr(&o).contains("E0604"), "{}", stderr(&o));
+    assert!(stderr(&o).contains("fitted.json"), "{}", stderr(&o));
+    assert!(!d.join("param2.scad").exists());
+}
+
+#[test]
+fn the_report_cannot_take_the_sidecars_place() {
+    let d = scratch("sidecar-clash");
+    let t = d.join("lounge");
+    targets("examples/variations/chair/lounge.scad", &t);
+    let out = d.join("fitted.scad");
+    let o = fit(
+        &t,
+        &out,
+        &["--report", d.join("fitted.json").to_str().unwrap()],
+    );
+    assert!(!o.status.success());
+    assert!(stderr(&o).contains("uncertainty"), "{}", stderr(&o));
+    assert!(!out.exists());
 }
 
 #[test]

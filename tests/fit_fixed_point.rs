@@ -3,51 +3,21 @@
 //! PNG) comes back with every face within `FIXED_POINT_PIXELS` of where it was. On
 //! examples and on generated families.
 
-use reparamc::command::fit::{Options as FitOpts, Settings, prepare};
-use reparamc::command::render::{
-    BackendChoice, Cameras, Layout, Options as RenderOpts, Pictures, render,
-};
+use reparamc::command::fit::Settings;
 use reparamc::fit::Parametric;
 use reparamc::fit::targets::load_target_dir;
 use reparamc::front::source::SourceMap;
 use reparamc::tolerance::FIXED_POINT_PIXELS;
 use std::path::{Path, PathBuf};
 
+#[path = "fit_support/views.rs"]
+mod views;
+
 /// Image side of the targets.
 const SIZE: u32 = 64;
 
 fn scratch(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("reparamc-fixed-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-/// Renders five views of `model` into `dir` as `reparamc render -o dir/` does.
-fn render_views(model: &Path, dir: &Path) {
-    let opts = RenderOpts {
-        model: model.to_path_buf(),
-        call: None,
-        size: (SIZE, SIZE),
-        cameras: Cameras::Around(5),
-        backend: BackendChoice {
-            gpu: false,
-            cpu: true,
-        },
-        layout: Layout::Views,
-    };
-    let out = render(&opts, &mut SourceMap::new()).unwrap_or_else(|e| panic!("render: {e:?}"));
-    let Pictures::Views {
-        files,
-        cameras_json,
-    } = out.pictures
-    else {
-        panic!("no views");
-    };
-    for (name, png) in files {
-        std::fs::write(dir.join(name), png).unwrap();
-    }
-    std::fs::write(dir.join("cameras.json"), cameras_json).unwrap();
+    views::scratch("fixed", name)
 }
 
 /// Fits `model` to its own renders with the default settings; the largest move of a face,
@@ -56,24 +26,8 @@ fn face_drift(model: &Path, name: &str) -> f64 {
     let dir = scratch(name);
     let views = dir.join("views");
     std::fs::create_dir_all(&views).unwrap();
-    render_views(model, &views);
-    let opts = FitOpts {
-        model: model.to_path_buf(),
-        target: views.clone(),
-        subspace: false,
-        max_size: None,
-        gallery: false,
-        backend: BackendChoice {
-            gpu: false,
-            cpu: true,
-        },
-        settings: Settings::default(),
-    };
-    let mut sources = SourceMap::new();
-    let job = prepare(&opts, &mut sources).unwrap_or_else(|_| panic!("prepare {name}"));
-    let fitted = job
-        .run(&mut |_| {})
-        .unwrap_or_else(|_| panic!("fit {name}"));
+    views::render_views(model, &views, SIZE);
+    let fitted = views::fit_cpu(model, &views, Settings::default());
     let loaded = reparamc::load_model(&mut SourceMap::new(), model).unwrap();
     let p = Parametric::new(&loaded.model);
     let x: Vec<f64> = fitted.report.slots.iter().map(|s| s.after).collect();

@@ -5,16 +5,20 @@
 //! can. Every candidate falls in a class by its structure alone: its kind, whether its two
 //! features belong to one part, to parts that touch, or to parts apart, whether the parts
 //! are repeats of each other, and, for equal extents, whether both are measured along the
-//! same axis. No class is judged in advance: each class's share of intent relations is
-//! estimated from this model's own evidence (expectation–maximisation over the two-
-//! hypothesis likelihood of `noise::log_likelihood_ratio`, with a uniform Beta(1, 1)
-//! prior on each share), and becomes the prior odds every relation of the class is tested
-//! with. A relation no variation speaks of (no degree of freedom) is decided by its class's
-//! share alone.
+//! same axis. Each class's share of intent relations is estimated from this model's own
+//! evidence (expectation–maximisation over the two-hypothesis likelihood of
+//! `noise::log_likelihood_ratio`), and becomes the prior odds every relation of the class
+//! is tested with. The share's prior is what the model says with no variations: the
+//! structural prior (`prior`) keeps or drops a relation by its class, and a class it keeps
+//! starts from Beta(1.5, 0.5) (mean 3/4), one it drops from Beta(0.5, 1.5) — two relations'
+//! worth, as much as the uniform Beta(1, 1), so a class with evidence is decided by it. A
+//! relation no variation speaks of (no degree of freedom: a part the variations do without
+//! or their pictures do not show) is decided by its class's share alone, which for a
+//! class no variation speaks of is the structural prior's verdict.
 
 use super::candidates::{Candidates, RelationKind};
 use super::noise::{Evidence, NoiseModel};
-use super::prior::{repeated, touching};
+use super::prior::{repeated, structural_prior, touching};
 use crate::ir::{FeatureKind, Model};
 use std::collections::HashMap;
 
@@ -74,7 +78,21 @@ pub fn prior_log_odds(
         .iter()
         .map(|&e| noise.log_likelihood_ratio(e, size))
         .collect();
-    let mut share = vec![0.5; index.len()];
+    // The structural prior's share of each class (it decides by class: 0 or 1).
+    let mut kept = vec![0.0; index.len()];
+    let mut members = vec![0.0; index.len()];
+    for &i in &structural_prior(model, candidates) {
+        kept[class[i]] += 1.0;
+    }
+    for &k in &class {
+        members[k] += 1.0;
+    }
+    let alpha: Vec<f64> = kept
+        .iter()
+        .zip(&members)
+        .map(|(k, m)| 0.5 + k / f64::max(*m, 1.0))
+        .collect();
+    let mut share: Vec<f64> = alpha.iter().map(|a| a / 2.0).collect();
     for _ in 0..ROUNDS {
         let mut intent = vec![0.0; share.len()];
         let mut count = vec![0.0; share.len()];
@@ -86,7 +104,8 @@ pub fn prior_log_odds(
         share = intent
             .iter()
             .zip(&count)
-            .map(|(w, c)| (w + 1.0) / (c + 2.0))
+            .zip(&alpha)
+            .map(|((w, c), a)| (w + a) / (c + 2.0))
             .collect();
     }
     class.iter().map(|&k| logit(share[k])).collect()

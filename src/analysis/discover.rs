@@ -19,6 +19,7 @@
 use super::candidates::Candidates;
 use super::chosen::{Chosen, candidates_by_slot, forget, rows_of};
 use super::pool::Pool;
+use super::precision::Precision;
 use super::project::{Faces, Projector};
 use super::rowbasis::RowBasis;
 use crate::ir::Affine;
@@ -72,6 +73,30 @@ pub fn fidelity<S: Similarity>(
 pub struct Sample {
     pub values: Vec<f64>,
     pub optional: Vec<usize>,
+    /// How much each face counts, for a variation fitted to pictures (`None`: every face
+    /// as the noise model says).
+    pub precision: Option<Precision>,
+}
+
+impl Sample {
+    /// A variation whose faces all count alike.
+    pub fn new(values: Vec<f64>, optional: Vec<usize>) -> Sample {
+        Sample {
+            values,
+            optional,
+            precision: None,
+        }
+    }
+
+    /// Whether the variation says anything about part `p`: it has the part, and its
+    /// pictures show it.
+    pub fn sees(&self, p: usize) -> bool {
+        !self.optional.contains(&p)
+            && self
+                .precision
+                .as_ref()
+                .is_none_or(|pr| !pr.unseen.contains(&p))
+    }
 }
 
 /// The greedy order, its scores and the distortion after each step.

@@ -154,22 +154,25 @@ fn informative(
 }
 
 /// Every variation at its own values, and one projector in the noise model's metric per
-/// set of parts variations do without.
+/// set of parts variations do without; a variation with a precision of its own (fitted to
+/// pictures) has its own projector.
 fn start_points<'a, R>(
     faces: &Faces,
     samples: &'a [Sample],
 ) -> (Vec<Point<'a, R>>, Vec<Projector>) {
-    let mut sets: Vec<&[usize]> = Vec::new();
+    let mut sets: Vec<Option<&[usize]>> = Vec::new();
     let mut projectors = Vec::new();
     let points = samples
         .iter()
         .map(|s| {
+            let precision = s.precision.as_ref().map(|p| p.weights.as_slice());
+            let key = precision.is_none().then_some(s.optional.as_slice());
             let group = sets
                 .iter()
-                .position(|o| *o == s.optional.as_slice())
+                .position(|o| key.is_some() && *o == key)
                 .unwrap_or_else(|| {
-                    sets.push(&s.optional);
-                    projectors.push(Projector::new(faces.noise_metric(&s.optional)));
+                    sets.push(key);
+                    projectors.push(Projector::new(faces.noise_metric(&s.optional, precision)));
                     sets.len() - 1
                 });
             Point {
@@ -364,7 +367,7 @@ fn context<'a>(faces: &'a Faces, candidates: &'a Candidates, samples: &[Sample])
             let parts: Vec<usize> = c.parts(&candidates.features).collect();
             samples
                 .iter()
-                .map(|s| !parts.iter().any(|p| s.optional.contains(p)))
+                .map(|s| parts.iter().all(|&p| s.sees(p)))
                 .collect()
         })
         .collect();

@@ -31,6 +31,7 @@ pub mod noise;
 pub mod optional;
 pub mod placement;
 pub mod pool;
+pub mod precision;
 pub mod prior;
 pub mod project;
 pub mod ranges;

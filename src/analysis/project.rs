@@ -153,16 +153,19 @@ impl Faces {
 
     /// The noise model's metric (`noise`): every face of a part the variation keeps weighs 1,
     /// so the metric's distance is the faces' displacement in world units, the unit the
-    /// variations' noise lives in, however the author's numbers drive the faces.
-    pub fn noise_metric(&self, skip: &[usize]) -> Metric {
+    /// variations' noise lives in, however the author's numbers drive the faces. A fitted
+    /// variation's `precision` (per entry of the parts, per axis, in `[0, 1]`) scales that
+    /// down where its pictures determine the faces less well (`precision`).
+    pub fn noise_metric(&self, skip: &[usize], precision: Option<&[[f64; 3]]>) -> Metric {
         let weights: Vec<[f64; 3]> = self
             .parts
             .iter()
-            .map(|pf| {
+            .enumerate()
+            .map(|(k, pf)| {
                 if skip.contains(&pf.part) {
                     [0.0; 3]
                 } else {
-                    [1.0; 3]
+                    precision.map_or([1.0; 3], |p| p[k])
                 }
             })
             .collect();
@@ -179,6 +182,20 @@ impl Faces {
             weights,
             ridge: PROJECTION_RIDGE * scale,
         }
+    }
+
+    /// Every face form: (entry of the parts, the model's part, the axis it is normal to,
+    /// the form).
+    pub fn face_forms(&self) -> impl Iterator<Item = (usize, usize, usize, &Affine)> {
+        self.parts
+            .iter()
+            .enumerate()
+            .flat_map(|(k, pf)| pf.forms().map(move |(a, f)| (k, pf.part, a, f)))
+    }
+
+    /// How many entries the parts have (the length of a precision's list).
+    pub fn entries(&self) -> usize {
+        self.parts.len()
     }
 
     /// Every weighted face form of the parts in `entries`: (squared area, form).

@@ -9,6 +9,7 @@ use super::render::{BackendArgs, failed, input_error, say};
 use reparamc::command::fit::{Fitted, OptimizerChoice, Options, Progress, Settings, prepare};
 use reparamc::front::source::SourceMap;
 use reparamc::output::write_atomic;
+use reparamc::variation::uncertainty::sidecar_path;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -205,7 +206,22 @@ fn settings(args: &Args, sigma: (f64, f64)) -> Settings {
 }
 
 pub fn run(args: Args) -> ExitCode {
-    let mut outputs = vec![args.output.as_path()];
+    let sidecar = sidecar_path(&args.output);
+    if let Some(clash) = args
+        .report
+        .iter()
+        .chain(&args.gallery)
+        .find(|p| **p == sidecar)
+    {
+        eprintln!(
+            "error: `{}` is where the fitted model's uncertainty goes (beside `{}`); \
+             write the report or the gallery elsewhere",
+            clash.display(),
+            args.output.display()
+        );
+        return ExitCode::from(EXIT_IO_ERROR);
+    }
+    let mut outputs = vec![args.output.as_path(), sidecar.as_path()];
     outputs.extend(
         args.report
             .iter()
@@ -265,20 +281,34 @@ fn target_files(dir: &std::path::Path) -> Vec<PathBuf> {
         .unwrap_or_default()
 }
 
-/// Writes the fitted model, the report and the gallery (each file whole or not at all)
+/// Writes the fitted model, its uncertainty sidecar, the report and the gallery (each file
+/// whole or not at all)
 /// and says what was fitted.
 fn write_results(args: &Args, fitted: Fitted) -> ExitCode {
+    let unseen = fitted
+        .report
+        .slots
+        .iter()
+        .filter(|s| s.std.is_none())
+        .count();
     let summary = format!(
-        "fitted {} of {} numbers to {} views: image loss {:.5} -> {:.5}; wrote {}",
+        "fitted {} of {} numbers to {} views: image loss {:.5} -> {:.5}; wrote {} and its \
+         uncertainty {} ({unseen} numbers the pictures do not determine)",
         fitted.moved,
         fitted.numbers(),
         fitted.report.views.len(),
         fitted.start_loss(),
         fitted.end_loss(),
-        args.output.display()
+        args.output.display(),
+        sidecar_path(&args.output).display()
     );
-    let mut outputs: Vec<(PathBuf, Vec<u8>)> =
-        vec![(args.output.clone(), fitted.scad.into_bytes())];
+    let mut outputs: Vec<(PathBuf, Vec<u8>)> = vec![
+        (args.output.clone(), fitted.scad.into_bytes()),
+        (
+            sidecar_path(&args.output),
+            fitted.uncertainty.to_json().into_bytes(),
+        ),
+    ];
     if let Some(path) = &args.report {
         match serde_json::to_string_pretty(&fitted.report) {
             Ok(j) => outputs.push((path.clone(), (j + "\n").into_bytes())),

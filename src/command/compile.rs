@@ -19,6 +19,7 @@ use crate::analysis::find_candidates_for;
 use crate::analysis::intent::{Selection, select};
 use crate::analysis::noise::NoiseModel;
 use crate::analysis::optional::{held_where_skipped, optional_parts, toggles};
+use crate::analysis::precision::Precision;
 use crate::analysis::prior::structural_prior;
 use crate::analysis::project::Faces;
 use crate::analysis::ranges::ranges;
@@ -191,12 +192,31 @@ pub fn reparameterize_telling(
     // (Variations fitted from pictures would bring their own per-number deviations.)
     let optional = optional_parts(model, &raw, &sim, 0.0);
     let values = held_where_skipped(model, &raw, &optional);
+    // A variation fitted to pictures says how well they show each face.
+    let precision: Vec<Option<Precision>> = variations
+        .iter()
+        .map(|v| {
+            v.uncertainty
+                .as_ref()
+                .map(|u| Precision::of(&faces, u, model.size()))
+        })
+        .collect();
     // Discovery (or the prior): which relations to keep.
     let choice = if variations.is_empty() {
         by_prior(model, &candidates, options.all_constraints)
     } else {
         let curve = options.distortion_curve.then_some(&sim);
-        by_discovery(model, &candidates, &faces, curve, &values, &optional, step)
+        let samples: Vec<Sample> = values
+            .iter()
+            .zip(&optional)
+            .zip(&precision)
+            .map(|((v, o), p)| Sample {
+                values: v.clone(),
+                optional: o.clone(),
+                precision: p.clone(),
+            })
+            .collect();
+        by_discovery(model, &candidates, &faces, curve, &samples, step)
     };
     // Reparameterization: the kept rows solved with anchors; the variations projected.
     let kept: Vec<Candidate> = choice
@@ -210,7 +230,16 @@ pub fn reparameterize_telling(
     let projected = project_variations(&anchors, &faces, &rows, &values, &optional);
     // Emit: sliders, blends and switches, the file and its presets.
     let tolerance = Tolerance::for_size(model.size());
-    let contacts = common_contacts(model, &raw, &optional, contact_slack(&choice, tolerance));
+    // A contact is evidence where the variation shows both parts.
+    let unshown: Vec<Vec<usize>> = optional
+        .iter()
+        .zip(&precision)
+        .map(|(o, p)| {
+            let unseen = p.iter().flat_map(|p| p.unseen.iter().copied());
+            o.iter().copied().chain(unseen).collect()
+        })
+        .collect();
+    let contacts = common_contacts(model, &raw, &unshown, contact_slack(&choice, tolerance));
     let (input_free, mut variation_free, slider_ranges) = loop {
         let (input_free, variation_free) = free_values(model, &solution, &projected);
         let slider_ranges = ranges(
@@ -339,19 +368,10 @@ fn by_discovery(
     candidates: &Candidates,
     faces: &Faces,
     sim: Option<&VolumeSimilarity>,
-    values: &[Vec<f64>],
-    optional: &[Vec<usize>],
+    samples: &[Sample],
     step: &mut dyn FnMut(usize, usize),
 ) -> Choice {
-    let samples: Vec<Sample> = values
-        .iter()
-        .zip(optional)
-        .map(|(v, o)| Sample {
-            values: v.clone(),
-            optional: o.clone(),
-        })
-        .collect();
-    let sel = select(model, faces, candidates, &samples, sim, step);
+    let sel = select(model, faces, candidates, samples, sim, step);
     let chosen = sel
         .order
         .iter()

@@ -17,7 +17,8 @@ use crate::fit::loss::{LossSpec, Target};
 use crate::fit::optimize::Optimizer;
 use crate::fit::targets::{TargetSet, load_target_dir};
 use crate::fit::{
-    DAMPED_FLOOR, FitError, FitOptions, FitResult, Parametric, Stage, constraint_basis, staged,
+    DAMPED_FLOOR, FitError, FitOptions, FitResult, Fitter, Parametric, Stage, check,
+    constraint_basis, staged,
 };
 use crate::front::source::SourceMap;
 use crate::ir::Model;
@@ -25,6 +26,7 @@ use crate::render::Backend;
 use crate::render::image::{Rgb, grid, picture};
 use crate::span::FileId;
 use crate::tolerance::RELATIVE_ROUNDOFF;
+use crate::variation::Uncertainty;
 use std::path::PathBuf;
 
 pub use crate::fit::{Progress, Step};
@@ -234,6 +236,8 @@ pub struct SlotReport {
     pub name: String,
     pub before: f64,
     pub after: f64,
+    /// How well the pictures determine it: one standard deviation (`None`: not at all).
+    pub std: Option<f64>,
 }
 
 /// The fit's report (`--report`): the inputs, the loss per view at the start and the end,
@@ -251,10 +255,12 @@ pub struct Report {
 }
 
 /// What a fit produced.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone)]
 pub struct Fitted {
     /// The main file with the fitted numbers written in.
     pub scad: String,
+    /// How well the pictures determine each number (the sidecar beside `scad`).
+    pub uncertainty: Uncertainty,
     /// What the user should read about the result.
     pub messages: Vec<Message>,
     pub report: Report,
@@ -361,21 +367,22 @@ impl Job {
             staged(model, self.opts.rounds, warm)
         };
         let problem = Parametric::new(model);
-        let result = crate::fit::fit(
-            &problem,
-            &self.set.cameras,
-            &self.targets,
-            &stages,
-            self.backend.as_mut(),
-            &self.opts,
-            progress,
-        );
-        let result = match result {
+        let (cameras, targets) = (&self.set.cameras, &self.targets);
+        let backend = self.backend.as_mut();
+        let run = check(&problem, cameras, targets, backend)
+            .and_then(|_| Fitter::new(&problem, cameras, targets, &stages, &self.opts))
+            .map(|fitter| {
+                let result = fitter.run(backend, progress);
+                let information = fitter.information(backend, &result);
+                (result, information)
+            });
+        let (result, information) = match run {
             Ok(r) => r,
             Err(e) => return Err(self.fit_failure(&e)),
         };
+        let uncertainty = information.uncertainty(model, &result.x);
         let gallery = self.gallery.then(|| self.gallery_png(&problem, &result));
-        Ok(self.fitted(&problem, result, gallery))
+        Ok(self.fitted(&problem, result, uncertainty, gallery))
     }
 
     /// The diagnostic for a fit that could not start.
@@ -410,7 +417,13 @@ impl Job {
     }
 
     /// The fitted text, the report and the summary.
-    fn fitted(self, problem: &Parametric, result: FitResult, gallery: Option<Vec<u8>>) -> Fitted {
+    fn fitted(
+        self,
+        problem: &Parametric,
+        result: FitResult,
+        uncertainty: Uncertainty,
+        gallery: Option<Vec<u8>>,
+    ) -> Fitted {
         let model = &self.model;
         let scad =
             crate::back::rewrite::with_slot_values(&self.text, self.main, &model.slots, &result.x);
@@ -444,6 +457,7 @@ impl Job {
                     name: s.name.clone(),
                     before: s.value,
                     after: result.x[s.id as usize],
+                    std: uncertainty.std(s.id as usize),
                 })
                 .collect(),
             start_loss: result.start_loss,
@@ -452,6 +466,7 @@ impl Job {
         };
         Fitted {
             scad,
+            uncertainty,
             messages,
             gallery,
             moved,

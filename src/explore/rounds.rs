@@ -14,7 +14,8 @@ use super::diffusion::{Pool, Request, Sampler, view_word};
 use super::net::ServerError;
 use super::run::{RunFolder, State};
 use crate::fit::loss::Target;
-use crate::fit::{FitOptions, Parametric, Stage};
+use crate::fit::uncertainty::Information;
+use crate::fit::{FitOptions, Fitter, Parametric, Stage, check};
 use crate::ir::Model;
 use crate::render::camera::{Camera, CameraSpec, OPENSCAD_FOV, Projection};
 use crate::render::image::{Rgb, picture};
@@ -22,6 +23,7 @@ use crate::render::scene::DEFAULT_SHADE;
 use crate::render::soft::{ViewPrep, prepare_view};
 use crate::render::{Backend, CpuBackend};
 use crate::span::FileId;
+use crate::variation::uncertainty::sidecar_path;
 
 /// Margin around the model's bounding sphere in the sampled views (room to grow).
 const FRAME_MARGIN: f64 = 1.4;
@@ -85,6 +87,8 @@ pub struct RoundOutcome {
     /// Per view: the picture kept, and the render it was asked from.
     pub guides: Vec<Rgb>,
     pub renders: Vec<Rgb>,
+    /// After the prompt's last round: how well its guidance determines each number.
+    pub information: Option<Information>,
 }
 
 /// The loop set up for a model.
@@ -286,24 +290,25 @@ impl<'a> Explorer<'a> {
             .zip(&renders)
             .filter_map(|(images, r)| closest(images, r))
             .collect();
-        let (x, loss) = self.fit(x, cameras, &guides, round)?;
+        let (x, loss, information) = self.fit(x, cameras, &guides, round)?;
         Ok(RoundOutcome {
             x,
             loss,
             guides,
             renders,
+            information,
         })
     }
 
     /// `iterations` steps of the image loss from `x` towards `guides`: the numbers after
-    /// them and the loss there.
+    /// them, the loss there and, after the last round, the numbers' information there.
     fn fit(
         &self,
         x: &[f64],
         cameras: &[Camera],
         guides: &[Rgb],
         round: usize,
-    ) -> Result<(Vec<f64>, f64), ExploreError> {
+    ) -> Result<(Vec<f64>, f64, Option<Information>), ExploreError> {
         let mut problem = self.problem.clone();
         problem.x0 = x.to_vec();
         let targets: Vec<Target> = guides.iter().map(Target::from_rgb).collect();
@@ -318,17 +323,17 @@ impl<'a> Explorer<'a> {
             ..FitOptions::default()
         };
         let stages = [Stage::slots(1)];
-        let fitted = crate::fit::fit(
-            &problem,
-            cameras,
-            &targets,
-            &stages,
-            &mut CpuBackend,
-            &opts,
-            &mut |_| {},
-        );
+        let last = round + 1 >= self.settings.rounds.max(1);
+        let backend = &mut CpuBackend;
+        let fitted = check(&problem, cameras, &targets, backend)
+            .and_then(|_| Fitter::new(&problem, cameras, &targets, &stages, &opts))
+            .map(|fitter| {
+                let r = fitter.run(backend, &mut |_| {});
+                let information = last.then(|| fitter.information(backend, &r));
+                (r, information)
+            });
         match fitted {
-            Ok(r) => Ok((r.x, r.end_loss.iter().sum())),
+            Ok((r, information)) => Ok((r.x, r.end_loss.iter().sum(), information)),
             Err(e) => Err(ExploreError::Run(format!("round {}: {e}", round + 1))),
         }
     }
@@ -348,6 +353,7 @@ impl<'a> Explorer<'a> {
         progress: &mut dyn FnMut(usize, usize, f64),
     ) -> Result<(), ExploreError> {
         let total = state.rounds;
+        let mut information = None;
         while state.prompts[index].round < total {
             let p = &state.prompts[index];
             let (prompt, name, round) = (p.prompt.clone(), p.name.clone(), p.round);
@@ -358,14 +364,24 @@ impl<'a> Explorer<'a> {
             let p = &mut state.prompts[index];
             p.round = round + 1;
             p.x = out.x;
+            information = out.information;
             p.loss.push(out.loss);
             folder.save(state).map_err(ExploreError::Run)?;
             progress(round + 1, total, out.loss);
         }
         let p = &state.prompts[index];
+        let path = folder.variation_path(&p.name);
+        // The sidecar goes first: a variation file is only ever beside its own sidecar.
+        // (A prompt finished by an earlier run keeps the sidecar that run wrote.)
+        if let Some(info) = information {
+            let u = info.uncertainty(self.model, &p.x);
+            folder
+                .write(&sidecar_path(&path), u.to_json().as_bytes())
+                .map_err(ExploreError::Run)?;
+        }
         let text = self.variation_text(&p.x);
         folder
-            .write(&folder.variation_path(&p.name), text.as_bytes())
+            .write(&path, text.as_bytes())
             .map_err(ExploreError::Run)
     }
 }

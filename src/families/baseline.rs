@@ -27,10 +27,7 @@ pub fn paper_method(model: &Model, raw: &[Vec<f64>]) -> Output {
     let samples: Vec<Sample> = raw
         .iter()
         .zip(&optional)
-        .map(|(v, o)| Sample {
-            values: v.clone(),
-            optional: o.clone(),
-        })
+        .map(|(v, o)| Sample::new(v.clone(), o.clone()))
         .collect();
     let faces = Faces::of(model);
     let tiers = vec![0u8; candidates.list.len()];

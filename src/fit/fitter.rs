@@ -16,6 +16,7 @@ use super::options::{
     FitOptions, GUARD_SWEEPS, HARD_SIGMA, MIN_LEVEL_SIDE, PROPORTIONS_POOLING, RELATIVE_FLOOR,
     STEP_HALVINGS,
 };
+use super::uncertainty::{AtPoint, Information};
 use super::{Parametric, Stage, albedo, frame, polish, proportions, stages};
 use crate::ir::Affine;
 use crate::render::camera::Camera;
@@ -361,6 +362,20 @@ impl<'a> Fitter<'a> {
     fn offer(&self, backend: &mut dyn Backend, best: &mut Best, x: &[f64], look: &mut Look) {
         let loss = self.judge(backend, x, look).total() + self.reg(x).0;
         best.offer(x, loss);
+    }
+
+    /// The Fisher information of the numbers at the fit's result, from the judge's loss
+    /// with the look the fit ended with ([`super::uncertainty`]).
+    pub fn information(&self, backend: &mut dyn Backend, result: &FitResult) -> Information {
+        let at = AtPoint {
+            problem: &self.problem,
+            cameras: &self.cameras,
+            targets: &self.targets,
+            shades: &result.shades,
+            albedo: &result.albedo,
+            spec: &self.opts.loss,
+        };
+        super::uncertainty::information(&at, backend, &result.x, &|x| self.valid(x))
     }
 
     /// The cameras and targets of level `level` (0: full size). Only levels up to

@@ -308,10 +308,18 @@ pub fn unpool(img: &[f32], w: u32, h: u32) -> Vec<f32> {
     out
 }
 
-/// `mean(sharpen(M − M_T)²) + w·mean(sharpen(S − S_T)²)` (after `spec.level` poolings) and
-/// its derivatives with respect to the rendered channels. The means are over the picture's own pixels: a border the fit added
-/// around it does not dilute the loss against the regulariser.
-pub fn view_loss(render: &SoftImage, target: &Target, spec: &LossSpec, grad: bool) -> ImageValue {
+/// The sharpened differences of one view from its target (after `spec.level` poolings),
+/// the image sizes they were pooled through and the pixel count their means are over.
+struct Sharpened {
+    qm: Vec<f32>,
+    qs: Vec<f32>,
+    w: u32,
+    h: u32,
+    sizes: Vec<(u32, u32)>,
+    n: f64,
+}
+
+fn sharpened(render: &SoftImage, target: &Target, spec: &LossSpec) -> Sharpened {
     let (w0, h0) = (render.width, render.height);
     let mut rm: Vec<f32> = render.m.iter().zip(&target.m).map(|(a, b)| a - b).collect();
     let mut rs: Vec<f32> = render.s.iter().zip(&target.s).map(|(a, b)| a - b).collect();
@@ -328,8 +336,40 @@ pub fn view_loss(render: &SoftImage, target: &Target, spec: &LossSpec, grad: boo
         sizes.push((w, h));
     }
     let n = (w * h) as f64 * target.picture_share();
-    let qm = sharpen(&rm, w, h, spec);
-    let qs = sharpen(&rs, w, h, spec);
+    Sharpened {
+        qm: sharpen(&rm, w, h, spec),
+        qs: sharpen(&rs, w, h, spec),
+        w,
+        h,
+        sizes,
+        n,
+    }
+}
+
+/// One view's residuals: the elements whose squares sum to [`view_loss`] (the sharpened
+/// coverage differences over `√n`, then the shade differences times `√(w / n)`).
+pub fn residuals(render: &SoftImage, target: &Target, spec: &LossSpec) -> Vec<f32> {
+    let q = sharpened(render, target, spec);
+    let km = (1.0 / q.n.sqrt()) as f32;
+    let ks = (spec.shading / q.n).sqrt() as f32;
+    q.qm.iter()
+        .map(|v| v * km)
+        .chain(q.qs.iter().map(|v| v * ks))
+        .collect()
+}
+
+/// `mean(sharpen(M − M_T)²) + w·mean(sharpen(S − S_T)²)` (after `spec.level` poolings) and
+/// its derivatives with respect to the rendered channels. The means are over the picture's own pixels: a border the fit added
+/// around it does not dilute the loss against the regulariser.
+pub fn view_loss(render: &SoftImage, target: &Target, spec: &LossSpec, grad: bool) -> ImageValue {
+    let Sharpened {
+        qm,
+        qs,
+        w,
+        h,
+        sizes,
+        n,
+    } = sharpened(render, target, spec);
     let sm: f64 = qm.iter().map(|&v| (v as f64) * (v as f64)).sum();
     let ss: f64 = qs.iter().map(|&v| (v as f64) * (v as f64)).sum();
     let loss = sm / n + spec.shading * ss / n;

@@ -14,14 +14,16 @@
 //! border of background ([`frame`]). With [`FitOptions::coverage`] the last round, the
 //! refining moves and the judge compare exact area coverage per pixel; pictures are read
 //! as coverage ([`coverage`]). The fit returns the best point it stood on by the loss it
-//! ends with ([`best`]).
+//! ends with ([`best`]). [`Fitter::information`] then says how well the pictures determine
+//! each number there ([`uncertainty`]: the loss's curvature).
 //!
 //! The module map: [`options`] holds the settings and the algorithm's constants;
 //! [`parametric`] the model prepared for fitting (scenes and gradients at any slot values);
 //! [`fitter`] the fit itself ([`fit`], a [`Fitter`]); [`best`] the point it returns;
 //! [`loss`] the image loss; [`coverage`] pictures read as coverage; [`optimize`]
 //! the update rules and the spaces they move in; [`stages`], [`proportions`], [`albedo`],
-//! [`polish`], [`frame`] the pieces named above; [`targets`] reads target folders.
+//! [`polish`], [`frame`] the pieces named above; [`targets`] reads target folders; [`uncertainty`] the
+//! numbers' Fisher information at the fit's point.
 //!
 //! Layering: `fit` drives the renderer (`render`) and reads the analysis' relations; the
 //! renderer knows nothing of it.
@@ -39,6 +41,7 @@ pub mod polish;
 pub mod proportions;
 pub mod stages;
 pub mod targets;
+pub mod uncertainty;
 
 pub use fitter::{FitError, FitResult, Fitter, Progress, Step, check, fit};
 pub use options::{DAMPED_FLOOR, FitOptions, HARD_SIGMA};

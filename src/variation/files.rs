@@ -6,6 +6,7 @@
 //! number at the same place; a frozen literal (one that decides structure) must not differ.
 
 use super::diff;
+use super::uncertainty::{Uncertainty, load_sidecar, sidecar_path};
 use crate::front::diag::{DResult, Diagnostic};
 use crate::front::parse::{Token, TokenKind, tokens};
 use crate::front::source::SourceMap;
@@ -20,6 +21,9 @@ pub struct Variation {
     /// From the file name: `bench.scad` → `bench`.
     pub name: String,
     pub values: Vec<f64>,
+    /// How well each number is known, when the variant has a fit's sidecar (`None`: the
+    /// numbers are as good as the noise model says).
+    pub uncertainty: Option<Uncertainty>,
 }
 
 /// A text and its tokens (the front end's token stream).
@@ -228,8 +232,22 @@ pub fn load_variation_calling(
                 s.value
             }
         })
-        .collect();
-    Ok(Variation { name, values })
+        .collect::<Vec<f64>>();
+    let uncertainty = load_sidecar(path, &values).map_err(|why| {
+        Box::new(Diagnostic::error(
+            "E0604",
+            format!(
+                "the uncertainty sidecar `{}` of the variation `{}` cannot be used: {why}",
+                sidecar_path(path).display(),
+                path.display()
+            ),
+        ))
+    })?;
+    Ok(Variation {
+        name,
+        values,
+        uncertainty,
+    })
 }
 
 /// Where one side of the comparison (the model or the variant) stops matching the other.

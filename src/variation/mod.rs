@@ -6,5 +6,7 @@
 
 mod diff;
 pub mod files;
+pub mod uncertainty;
 
 pub use files::{Variation, load_variation, load_variation_calling};
+pub use uncertainty::Uncertainty;

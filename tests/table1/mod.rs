@@ -102,6 +102,7 @@ pub fn evaluate(name: &str, seed: u64) -> Row {
         .iter()
         .map(|v| Variation {
             name: v.name.clone(),
+            uncertainty: None,
             values: v
                 .values
                 .iter()
