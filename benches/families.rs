@@ -7,11 +7,14 @@
 //! default); `FAMILIES_ROWS=main` runs only the main condition; `FAMILIES_PAPER=0` leaves
 //! out the paper's method (its greedy by exact IoU takes minutes on some families, where
 //! ours takes a fraction of a second); `FAMILIES_TRACE=1` prints
-//! every family's scores; `FAMILIES_DUMP=seed` prints one family's model in every style.
+//! every family's scores; `FAMILIES_DUMP=seed` prints one family's model in every style;
+//! `FAMILIES_WRITE=dir` writes each family as files for the command (`dir/seed<N>/`:
+//! `model.scad`, the noisy training variations `train<k>.scad`, the held-out `held<k>.scad`).
 
 use rayon::prelude::*;
+use reparamc::back::rewrite::with_slot_values;
 use reparamc::families::rates::{header, rates, row};
-use reparamc::families::run::{FamilyResult, Setup, evaluate_family};
+use reparamc::families::run::{Case, FamilyResult, Setup, evaluate_family};
 
 fn seeds() -> Vec<u64> {
     let spec = std::env::var("FAMILIES_SEEDS").unwrap_or_else(|_| "200".into());
@@ -49,6 +52,34 @@ fn trace(setup: Setup, r: &FamilyResult) {
     }
 }
 
+/// Writes seed `seed`'s model as `dir/seed<N>/model.scad`, its noisy training variations
+/// as `train<k>.scad` and its held-out ones as `held<k>.scad`.
+fn write_family(seed: u64, dir: &std::path::Path) {
+    let setup = Setup {
+        noise: 0.01,
+        training: 3,
+    };
+    let case = match Case::load(seed, setup, None) {
+        Ok(c) => c,
+        Err(e) => return eprintln!("skipped: {e}"),
+    };
+    let out = dir.join(format!("seed{seed}"));
+    std::fs::create_dir_all(&out).expect("a folder to write to");
+    let text = case.sources.text(case.loaded.main);
+    let file = |name: String, values: &[f64]| {
+        let t = with_slot_values(text, case.loaded.main, &case.model.slots, values);
+        std::fs::write(out.join(name), t).expect("writable");
+    };
+    file("model.scad".into(), &case.model.slot_values());
+    for (k, v) in case.training.iter().enumerate() {
+        file(format!("train{k}.scad"), &v.values);
+    }
+    for (k, v) in case.held_out.iter().enumerate() {
+        file(format!("held{k}.scad"), &v.values);
+    }
+    eprintln!("seed {seed}: wrote {}", out.display());
+}
+
 fn main() {
     if !std::env::args().any(|a| a == "--bench") {
         eprintln!("families: run `cargo bench --bench families` for the table");
@@ -70,6 +101,14 @@ fn main() {
         return;
     }
     let seeds = seeds();
+    // `FAMILIES_WRITE=dir` writes each family (1% noise, 3 training) as files the command
+    // reads, and stops.
+    if let Ok(dir) = std::env::var("FAMILIES_WRITE") {
+        for &seed in &seeds {
+            write_family(seed, std::path::Path::new(&dir));
+        }
+        return;
+    }
     let main_only = std::env::var("FAMILIES_ROWS").is_ok_and(|r| r == "main");
     let with_paper = std::env::var("FAMILIES_PAPER").map_or(true, |v| v != "0");
     let mut setups = vec![Setup {

@@ -10,9 +10,15 @@
 //! then the box keeps it like any size. The model's numbers at every setting are the same
 //! affine family as before: only the coordinates the sliders show change.
 //!
-//! Invariants: a replaced variable only moves parts (sets no size) and is not already a
-//! contact variable; the substitution keeps every slot's expression exact (coefficients are
-//! read back as small fractions like the solve's); one side is made a variable per call.
+//! The variable replaced is one that only moves parts (sets no size) where the side has
+//! one; otherwise a size (the top's height, say). Through a size, the derived sizes must
+//! stay positive over the new box, which can cut a preset off: [`keep_contacts`] keeps a
+//! change of basis only when the new box holds as many of the input and the presets.
+//!
+//! Invariants: a replaced variable is not already a contact variable; the substitution
+//! keeps every slot's expression exact (coefficients are read back as small fractions like
+//! the solve's); one side is made a variable per call; the box [`keep_contacts`] returns
+//! holds at least as many of the input and the presets as the box it started from.
 
 use super::contacts::ContactSide;
 use super::ranges::{Range, in_free, min_over_box, size_forms};
@@ -47,9 +53,56 @@ fn moved_part(model: &Model, sol: &Solution, side: &ContactSide, j: usize) -> Op
     })
 }
 
+/// The box of slider ranges for a solution: the free variables' values at the input and at
+/// each preset, and the ranges.
+pub type Boxed = (Vec<f64>, Vec<Vec<f64>>, Vec<Range>);
+
+/// Makes contact sides the box breaks free variables, one at a time, most broken first. A
+/// change of basis is kept only when the box it leads to (`box_of`) holds as many of the
+/// input and the presets as the box before: through a size, the sizes' positivity can
+/// shrink the box off a preset, and then the side is left as it was. Returns the last box.
+pub fn keep_contacts(
+    model: &Model,
+    sol: &mut Solution,
+    contacts: &[ContactSide],
+    slack: f64,
+    box_of: &mut dyn FnMut(&Solution) -> Boxed,
+) -> Boxed {
+    let mut refused = Vec::new();
+    let mut current = box_of(sol);
+    loop {
+        let (input, _, ranges) = &current;
+        let mut trial = sol.clone();
+        let Some(side) =
+            make_one_contact_variable(model, &mut trial, contacts, input, ranges, slack, &refused)
+        else {
+            return current;
+        };
+        let next = box_of(&trial);
+        if held(&next) >= held(&current) {
+            *sol = trial;
+            current = next;
+        } else {
+            refused.push(side);
+        }
+    }
+}
+
+/// How many of the input and the presets the ranges hold.
+fn held((input, presets, ranges): &Boxed) -> usize {
+    std::iter::once(input)
+        .chain(presets)
+        .filter(|v| {
+            v.iter()
+                .zip(ranges)
+                .all(|(x, r)| r.min <= *x && *x <= r.max)
+        })
+        .count()
+}
+
 /// Makes the contact side most broken over the box of `ranges` (at values `input` of the
 /// free variables, a side may start below zero by `slack`) a free variable, if one is
-/// broken and some free variable of it only places a part. Returns whether it did.
+/// broken, is not `refused`, and has a free variable to replace. Returns the side made.
 pub fn make_one_contact_variable(
     model: &Model,
     sol: &mut Solution,
@@ -57,7 +110,8 @@ pub fn make_one_contact_variable(
     input: &[f64],
     ranges: &[Range],
     slack: f64,
-) -> bool {
+    refused: &[usize],
+) -> Option<usize> {
     let places = positions(model, sol);
     // (deficit, side, variable to replace, the side in the free variables)
     let mut worst: Option<(f64, usize, usize, InFree)> = None;
@@ -66,17 +120,21 @@ pub fn make_one_contact_variable(
         let live: Vec<usize> = (0..a.len())
             .filter(|&i| a[i].abs() > COEFFICIENT_ZERO)
             .collect();
-        if live.len() < 2 {
+        if live.len() < 2 || refused.contains(&k) {
             continue;
         }
         let at_input = c + a.iter().zip(input).map(|(x, y)| x * y).sum::<f64>();
         let deficit =
             at_input.min(0.0) - slack - min_over_box(c, &a, |i| (ranges[i].min, ranges[i].max));
-        // The variable to replace: one that only places a part, the last shown.
+        // The variable to replace: one that only places a part, the last shown; failing
+        // that, the last shown size (the family is the same either way).
+        let free = |i: &&usize| sol.contact(**i).is_none();
         let Some(&j) = live
             .iter()
             .rev()
-            .find(|&&i| places[i] && sol.contact(i).is_none())
+            .filter(free)
+            .find(|&&i| places[i])
+            .or_else(|| live.iter().rev().find(free))
         else {
             continue;
         };
@@ -84,13 +142,9 @@ pub fn make_one_contact_variable(
             worst = Some((deficit, k, j, (c, a)));
         }
     }
-    let Some((_, k, j, side_in_free)) = worst else {
-        return false;
-    };
+    let (_, k, j, side_in_free) = worst?;
     let side = &contacts[k];
-    let Some(moved) = moved_part(model, sol, side, j) else {
-        return false;
-    };
+    let moved = moved_part(model, sol, side, j)?;
     let other = if side.parts[0] == moved {
         side.parts[1]
     } else {
@@ -103,7 +157,7 @@ pub fn make_one_contact_variable(
         axis: side.axis,
         form: side.form.clone(),
     });
-    true
+    Some(k)
 }
 
 /// Rewrites every slot's expression with free variable `j` replaced by `w = c + a·u`:
@@ -172,7 +226,9 @@ mod tests {
         };
         loop {
             let (input, r) = box_of(&sol);
-            if !make_one_contact_variable(&model, &mut sol, &contacts, &input, &r, eps) {
+            if make_one_contact_variable(&model, &mut sol, &contacts, &input, &r, eps, &[])
+                .is_none()
+            {
                 break;
             }
             made += 1;

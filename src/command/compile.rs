@@ -11,7 +11,7 @@ use super::pictures::{Progress, pictures};
 use crate::analysis::anchors::{Anchors, project_variations};
 use crate::analysis::candidates::{Candidate, Candidates};
 use crate::analysis::classes::sigmoid;
-use crate::analysis::contact_vars::make_one_contact_variable;
+use crate::analysis::contact_vars::keep_contacts;
 use crate::analysis::contacts::common_contacts;
 use crate::analysis::cutoff::{Cutoff, change_points};
 use crate::analysis::discover::{Sample, Similarity};
@@ -240,28 +240,13 @@ pub fn reparameterize_telling(
         })
         .collect();
     let contacts = common_contacts(model, &raw, &unshown, contact_slack(&choice, tolerance));
-    let (input_free, mut variation_free, slider_ranges) = loop {
-        let (input_free, variation_free) = free_values(model, &solution, &projected);
-        let slider_ranges = ranges(
-            model,
-            &solution,
-            &input_free,
-            &variation_free,
-            &contacts,
-            tolerance.epsilon,
-        );
-        // A contact the box cannot keep becomes a slider of its own, then the ranges again.
-        if !make_one_contact_variable(
-            model,
-            &mut solution,
-            &contacts,
-            &input_free,
-            &slider_ranges,
-            tolerance.epsilon,
-        ) {
-            break (input_free, variation_free, slider_ranges);
-        }
-    };
+    let eps = tolerance.epsilon;
+    let (input_free, mut variation_free, slider_ranges) =
+        keep_contacts(model, &mut solution, &contacts, eps, &mut |sol| {
+            let (input_free, variation_free) = free_values(model, sol, &projected);
+            let r = ranges(model, sol, &input_free, &variation_free, &contacts, eps);
+            (input_free, variation_free, r)
+        });
     // Presets are the projected variations inside the ranges: every size positive and
     // every kept contact closed there too.
     for v in &mut variation_free {
