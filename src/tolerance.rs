@@ -265,6 +265,26 @@ pub const ALBEDO_PULL: f64 = 1e-5;
 /// that rounding does not leave it violated (a relative margin of 1e-6).
 pub const GUARD_MARGIN: f64 = 1.000001;
 
+/// The step of the differences that measure a fit's information (`fit::uncertainty`), a
+/// share of the model's size: a small fraction of a pixel at the sizes pictures come in.
+pub const UNCERTAINTY_STEP: f64 = 1e-3;
+
+/// One level of an 8-bit channel as a standard deviation of rounding, `1 / (255 √12)`:
+/// the floor of a fit's residual noise (`fit::uncertainty`).
+pub const PIXEL_QUANTISATION: f64 = 1.132_0e-3;
+
+/// Eigenvalues of a fit's information below this share of the largest count as zero: the
+/// pictures say nothing along them (`variation::uncertainty`).
+pub const INFORMATION_NULL_SHARE: f64 = 1e-12;
+
+/// A combination of numbers counts as inside the information's range when its component
+/// in the null space is below this share of its length (`variation::uncertainty`).
+pub const INFORMATION_RANGE_SHARE: f64 = 1e-6;
+
+/// How far (relative) a sidecar's record of a number may differ from the variant's own and
+/// still describe it: the variant's numbers are written to ten significant figures.
+pub const SIDECAR_VALUE_MATCH: f64 = 1e-9;
+
 /// How far, in pixels, a fit started at the truth may leave it: fitted to its own renders,
 /// every face of a model comes back within this of where it was (issue 15).
 pub const FIXED_POINT_PIXELS: f64 = 0.1;

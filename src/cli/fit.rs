@@ -6,10 +6,11 @@
 
 use super::EXIT_IO_ERROR;
 use super::render::{BackendArgs, failed, input_error, say};
-use reparamc::command::fit::{Fitted, OptimizerChoice, Options, Progress, Settings, prepare};
+use reparamc::command::fit::{
+    Fitted, OptimizerChoice, Options, Progress, Settings, prepare, sidecar_path,
+};
 use reparamc::front::source::SourceMap;
 use reparamc::output::write_atomic;
-use reparamc::variation::uncertainty::sidecar_path;
 use std::path::PathBuf;
 use std::process::ExitCode;
 

@@ -27,6 +27,8 @@ use crate::render::image::{Rgb, grid, picture};
 use crate::span::FileId;
 use crate::tolerance::RELATIVE_ROUNDOFF;
 use crate::variation::Uncertainty;
+/// Where a fitted model's uncertainty goes: `fitted.scad` → `fitted.json`.
+pub use crate::variation::uncertainty::sidecar_path;
 use std::path::PathBuf;
 
 pub use crate::fit::{Progress, Step};

@@ -11,7 +11,8 @@
 //! shows) is not determined at all ([`crate::variation::uncertainty`]).
 //!
 //! `J` is taken by central differences of the renders with exact area coverage per pixel,
-//! which is continuous in the numbers, with a step of [`FD_STEP`] of the model's size
+//! which is continuous in the numbers, with a step of `tolerance::UNCERTAINTY_STEP` of the
+//! model's size
 //! (one-sided where the other side would make a part undrawable). A column holds only the
 //! pixels a number moves, so columns are kept sparse. Pixels are not independent (edges
 //! are lines of pixels; the sharpening couples neighbours), so `τ` is a floor on the truth:
@@ -25,15 +26,9 @@ use crate::render::Backend;
 use crate::render::camera::Camera;
 use crate::render::scene::{BOX_FILTER, NSHADE};
 use crate::render::soft::prepare_view;
+use crate::tolerance::{PIXEL_QUANTISATION, UNCERTAINTY_STEP};
 use crate::variation::Uncertainty;
 use nalgebra::DMatrix;
-
-/// The finite-difference step, a share of the model's size (a small fraction of a pixel
-/// at the sizes pictures come in).
-pub const FD_STEP: f64 = 1e-3;
-
-/// One level of an 8-bit channel, as a standard deviation of rounding (`1 / (255 √12)`).
-const QUANTISATION: f64 = 1.132_0e-3;
 
 /// The Fisher information of the numbers the pictures can show.
 #[derive(Debug, Clone, PartialEq)]
@@ -100,7 +95,7 @@ impl AtPoint<'_> {
             .iter()
             .map(|t| 1.0 / ((t.width * t.height) as f64 * t.picture_share()).max(1.0))
             .sum();
-        QUANTISATION * QUANTISATION * inv_n / k
+        PIXEL_QUANTISATION * PIXEL_QUANTISATION * inv_n / k
     }
 }
 
@@ -119,7 +114,7 @@ pub fn information(
         .filter_map(|(s, live)| live.then_some(s))
         .collect();
     let e0 = at.residuals(backend, x);
-    let h = FD_STEP * at.problem.scale;
+    let h = UNCERTAINTY_STEP * at.problem.scale;
     let columns: Vec<Vec<(u32, f32)>> = slots
         .iter()
         .map(|&s| column(at, backend, x, s, h, &e0, valid))

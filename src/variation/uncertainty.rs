@@ -16,20 +16,13 @@
 //! share the name) and is ignored. Invariant: a loaded [`Uncertainty`] describes the
 //! variation it was loaded with (same value at every listed slot) or loading fails.
 
+use crate::tolerance::{INFORMATION_NULL_SHARE, INFORMATION_RANGE_SHARE, SIDECAR_VALUE_MATCH};
 use nalgebra::{DMatrix, DVector, SymmetricEigen};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
 /// The format tag of a sidecar.
 pub const FORMAT: &str = "reparamc-fit-uncertainty/1";
-
-/// Eigenvalues of the information below this share of the largest count as zero: the
-/// pictures say nothing along their directions.
-const NULL_SHARE: f64 = 1e-12;
-
-/// A direction counts as inside the information's range when its component in the null
-/// space is below this share of its length.
-const RANGE_SHARE: f64 = 1e-6;
 
 /// One number a fit reports on.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -149,7 +142,9 @@ impl Uncertainty {
         if norm == 0.0 {
             return 0.0;
         }
-        if self.null.ncols() > 0 && (self.null.transpose() * &f).norm() > RANGE_SHARE * norm {
+        if self.null.ncols() > 0
+            && (self.null.transpose() * &f).norm() > INFORMATION_RANGE_SHARE * norm
+        {
             return f64::INFINITY;
         }
         f.dot(&(&self.pseudo_inverse * &f))
@@ -176,7 +171,7 @@ fn decompose(f: &DMatrix<f64>) -> (DMatrix<f64>, DMatrix<f64>) {
     let sym = (f + f.transpose()) * 0.5;
     let eig = SymmetricEigen::new(sym);
     let top = eig.eigenvalues.iter().fold(0.0f64, |m, v| m.max(*v));
-    let cut = NULL_SHARE * top;
+    let cut = INFORMATION_NULL_SHARE * top;
     let mut pinv = DMatrix::zeros(n, n);
     let mut null_cols = Vec::new();
     for (k, &l) in eig.eigenvalues.iter().enumerate() {
@@ -218,7 +213,7 @@ pub fn load_sidecar(variant: &Path, values: &[f64]) -> Result<Option<Uncertainty
     let u = Uncertainty::from_sidecar(values.len(), sidecar)?;
     for n in &u.sidecar.numbers {
         let here = values[n.slot];
-        let tol = 1e-9 * here.abs().max(n.value.abs()).max(1.0);
+        let tol = SIDECAR_VALUE_MATCH * here.abs().max(n.value.abs()).max(1.0);
         if (here - n.value).abs() > tol {
             return Err(format!(
                 "it says number {} (`{}`) is {}, but the variant has {here}: the variant \
