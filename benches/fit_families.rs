@@ -7,8 +7,8 @@
 //!
 //! Prints, per target source, the share of fits with IoU ≥ 0.9 and ≥ 0.95, the median, and
 //! the mean time per fit. `FIT_FAMILIES_SEEDS=a..b` (default `0..20`), `FIT_FAMILIES_SIZE`
-//! (default 256), `FIT_FAMILIES_SOURCES=ours,openscad`, `FIT_FAMILIES_SCHEDULE=far` (the
-//! recipe for far pictures instead of the default). Under `cargo test` (`--bench`
+//! (default 256), `FIT_FAMILIES_SOURCES=ours,openscad`, `FIT_FAMILIES_SCHEDULE=paper` (the
+//! paper's schedule instead of the default; `far` is the default's recipe by name). Under `cargo test` (`--bench`
 //! absent) it fits one family at 48 pixels as a smoke test.
 
 use reparamc::command::fit::{Options as FitOpts, Settings, prepare};
@@ -109,6 +109,7 @@ fn fit_one(seed: u64, size: u32, source: &str) -> Option<(f64, f64)> {
         backend: CPU,
         settings: match std::env::var("FIT_FAMILIES_SCHEDULE").as_deref() {
             Ok("far") => Settings::far(),
+            Ok("paper") => Settings::paper(),
             _ => Settings::default(),
         },
     };

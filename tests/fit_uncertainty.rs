@@ -58,11 +58,13 @@ fn middles(model: &Model, x: &[f64]) -> (f64, f64) {
 }
 
 /// Slot by slot from the start: the structural stage would carry the bolt along with the
-/// top by the model's own relations, and leave no junk to test against.
+/// top by the model's own relations, and leave no junk to test against. The paper's
+/// schedule: the default's face moves may grow the bolt out to the thicker top's own faces
+/// (a part that fills another explains the same pictures), and a bolt there is seen.
 fn fit(model: &Path, target: &Path) -> reparamc::command::fit::Fitted {
     let settings = Settings {
         warm: Some(0),
-        ..Settings::default()
+        ..Settings::paper()
     };
     views::fit_cpu(model, target, settings)
 }

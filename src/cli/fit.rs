@@ -35,10 +35,10 @@ pub struct Args {
     /// Write before / target / after pictures side by side (PNG).
     #[arg(long)]
     gallery: Option<PathBuf>,
-    /// The schedule the other settings start from: `paper` (the paper's: SGD at 0.05) or
-    /// `far`, the recipe for pictures far from the model (Adam at 0.01, settling, face
-    /// moves and refining moves, a border of 1/8). Flags below override it.
-    #[arg(long, value_enum, default_value_t = ScheduleArg::Paper)]
+    /// The schedule the other settings start from: `far`, the recipe that also reaches
+    /// pictures far from the model (Adam at 0.01, settling, face moves and refining moves,
+    /// a border of 1/8), or `paper` (the paper's: SGD at 0.05). Flags below override it.
+    #[arg(long, value_enum, default_value_t = ScheduleArg::Far)]
     schedule: ScheduleArg,
     /// Compare sigmoid edges to the end instead of finishing on area coverage (the last
     /// round, the refining moves and the choice of the result).

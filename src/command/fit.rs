@@ -90,17 +90,18 @@ pub struct Settings {
     pub coverage: bool,
 }
 
-/// The default is the paper's schedule finished on area coverage ([`Settings::paper`]);
-/// [`Settings::far`] is the recipe for pictures far from the model.
+/// The default is the recipe that also reaches pictures far from the model
+/// ([`Settings::far`]); [`Settings::paper`] is the paper's schedule.
 impl Default for Settings {
     fn default() -> Self {
-        Settings::paper()
+        Settings::far()
     }
 }
 
 impl Settings {
-    /// The README's recipe for pictures far from the model: Adam at 0.01, settling, two
-    /// sweeps of face moves and of refining moves, a border of an eighth of the picture.
+    /// The default: the recipe for pictures far from the model (and near ones; started at
+    /// the truth it stays there): Adam at 0.01, settling, two sweeps of face moves and of
+    /// refining moves, a border of an eighth of the picture.
     pub fn far() -> Settings {
         Settings {
             lr: 0.01,

@@ -4,12 +4,16 @@
 //! An antialiased picture (our renders, a diffusion model's, a photo's) draws a pixel the
 //! silhouette crosses as a mix `c = (1 − α)·b + α·f` of the background `b` and the
 //! surface's own colour `f`. Reading every pixel that differs from the background as
-//! foreground makes every part a pixel fatter; here `α` is the pixel's colour projected
-//! onto the segment from `b` to the colour `f` of a nearby pixel the object covers whole
-//! (one whose neighbours are all foreground) whose segment passes closest to `c`. That
-//! reads the silhouette and a gap narrower than a pixel between two parts (seen from above,
-//! a table top and its shelf). A hard picture (OpenSCAD's) reads as before: each pixel is a
-//! surface colour, the same as its neighbours on that face, whose segment ends at it.
+//! foreground makes every part a pixel fatter; here `c` is unmixed as `(1 − α)·b + μ·f`
+//! with `f` the colour of a nearby pixel the object covers whole (one whose neighbours are
+//! all foreground) that explains `c` best, at a brightness of its own (`μ / α`): the surface
+//! in a silhouette pixel is often another face of the same material, lit differently (a
+//! thin leg's dark side beside a lit top; two faces sharing a corner pixel), and reading it
+//! at its neighbour's shade biases `α`. A part with no such pixel nearby (thinner than the
+//! window) reads against the colours the picture covers whole anywhere. That reads the
+//! silhouette and a gap narrower than a pixel between two parts (seen from above, a table
+//! top and its shelf). A hard picture (OpenSCAD's) reads as before: each pixel is a
+//! surface colour, the same as its neighbours on that face.
 //!
 //! The premultiplied grey follows without knowing `f`: luminance is linear, so the
 //! surface's share of the pixel's luminance is `L(c) − (1 − α)·L(b)`.
@@ -19,13 +23,12 @@ use crate::render::image::Rgb;
 /// Radius (pixels) of the square in which a silhouette pixel looks for covered pixels.
 const REACH: i64 = 2;
 
-/// Largest distance of a pixel's colour from the mix segment, as a fraction of the
-/// segment's length, at which it still counts as a mix.
+/// Largest residual of a pixel's colour unmixed against a surface colour `f`, as a fraction
+/// of `|f − b|`, at which it still counts as a mix of `f` and the background.
 const MIX_RESIDUAL: f32 = 0.15;
 
-/// Segments whose distance from a pixel's colour is within this (a fraction of their
-/// length, about 8-bit rounding) of the closest count as passing through it alike.
-const MIX_TIE: f32 = 0.02;
+/// Colours of the palette closer than this in every channel count as one.
+const PALETTE_STEP: f32 = 1.0 / 64.0;
 
 /// A picture's channels as coverage: `(m, s)`, foreground coverage and premultiplied grey.
 /// `lo` and `hi` are the colour distances from `background` below which a pixel is
@@ -48,6 +51,7 @@ pub fn unmix(img: &Rgb, background: [f32; 3], lo: f32, hi: f32) -> (Vec<f32>, Ve
         .flat_map(|y| (0..w).map(move |x| (x, y)))
         .map(|(x, y)| neighbours(x, y).all(|(a, b)| fg(a, b)))
         .collect();
+    let palette = palette(img, &solid);
     let lum = |c: &[f32; 3]| 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
     let lb = lum(&background);
     let mut m = vec![0.0f32; d.len()];
@@ -62,13 +66,29 @@ pub fn unmix(img: &Rgb, background: [f32; 3], lo: f32, hi: f32) -> (Vec<f32>, Ve
             let covered = window(x, y)
                 .filter_map(|(a, b)| at(a, b))
                 .filter(|&j| solid[j]);
-            let alpha =
-                mix_share(img.data[i], background, covered.map(|j| img.data[j])).unwrap_or(1.0);
+            let near = mix_share(img.data[i], background, covered.map(|j| img.data[j]), lo);
+            let alpha = near
+                .or_else(|| mix_share(img.data[i], background, palette.iter().copied(), lo))
+                .unwrap_or(1.0);
             m[i] = alpha * gate;
             s[i] = (lum(&img.data[i]) - (1.0 - m[i]) * lb).max(0.0);
         }
     }
     (m, s)
+}
+
+/// The distinct colours (to [`PALETTE_STEP`]) of the pixels the object covers whole: the
+/// surfaces a pixel with none nearby (a part thinner than the window, seen nowhere whole)
+/// may be a mix of, at a brightness of their own.
+fn palette(img: &Rgb, solid: &[bool]) -> Vec<[f32; 3]> {
+    let key = |c: &[f32; 3]| c.map(|v| (v / PALETTE_STEP).round() as i32);
+    let mut seen = std::collections::HashSet::new();
+    img.data
+        .iter()
+        .zip(solid)
+        .filter(|(c, s)| **s && seen.insert(key(c)))
+        .map(|(c, _)| *c)
+        .collect()
 }
 
 /// Pixels of the square of radius [`REACH`] around `(x, y)`, itself left out.
@@ -79,34 +99,85 @@ fn window(x: i64, y: i64) -> impl Iterator<Item = (i64, i64)> {
         .map(move |(dx, dy)| (x + dx, y + dy))
 }
 
-/// The share `α ∈ [0, 1]` of `c = (1 − α)·b + α·f` for the surface colour `f` among
-/// `covered` whose segment from `b` passes closest to `c` (relative to its length); among
-/// segments within [`MIX_TIE`] of the closest, the longest (pixels that are themselves
-/// mixes lie on the same segment, nearer the background). `None` when none passes within
-/// [`MIX_RESIDUAL`].
-fn mix_share(c: [f32; 3], b: [f32; 3], covered: impl Iterator<Item = [f32; 3]>) -> Option<f32> {
+/// The share `α ∈ [0, 1]` of `c = (1 − α)·b + μ·f` for the surface colour `f` among
+/// `covered` that explains `c` best; `None` when none passes within [`MIX_RESIDUAL`].
+/// Fits whose residuals differ by less than `noise` (a colour difference the picture's
+/// noise makes) explain `c` alike, and the smallest share among them is taken: a covered
+/// pixel that is itself a mix of its surface and the background (inside a gap narrower
+/// than a pixel, all its neighbours are foreground) explains `c` as well as the pure
+/// surface does, with a larger share (`f` carries background in itself).
+///
+/// The surface in the pixel is `f` at any brightness `μ / α`: the face there may be another
+/// face of the same material, lit differently (a thin leg's dark side next to a lit top, a
+/// silhouette corner where two faces share the pixel), and reading it at `f`'s own shade
+/// makes a darker face look like more coverage. Only when `b` and `f` are nearly parallel
+/// (grey on white) does colour not tell coverage from brightness; then `f`'s own shade is
+/// assumed (`μ = α`, the projection onto the segment from `b` to `f`).
+fn mix_share(
+    c: [f32; 3],
+    b: [f32; 3],
+    covered: impl Iterator<Item = [f32; 3]>,
+    noise: f32,
+) -> Option<f32> {
     let v: [f32; 3] = std::array::from_fn(|k| c[k] - b[k]);
-    // (relative residual, squared length, share) of every segment.
-    let fits: Vec<(f32, f32, f32)> = covered
-        .filter_map(|f| {
-            let u: [f32; 3] = std::array::from_fn(|k| f[k] - b[k]);
-            let uu: f32 = u.iter().map(|a| a * a).sum();
-            if uu <= 0.0 {
-                return None;
-            }
-            let t = (0..3).map(|k| v[k] * u[k]).sum::<f32>() / uu;
-            let r2: f32 = (0..3).map(|k| (v[k] - t * u[k]).powi(2)).sum();
-            Some(((r2 / uu).sqrt(), uu, t.clamp(0.0, 1.0)))
-        })
-        .collect();
-    let closest = fits.iter().map(|f| f.0).fold(f32::INFINITY, f32::min);
-    if closest > MIX_RESIDUAL {
+    let fits: Vec<Unmixed> = covered.filter_map(|f| unmix_one(v, b, f)).collect();
+    let closest = fits
+        .iter()
+        .map(|f| f.residual)
+        .fold(f32::INFINITY, f32::min);
+    let explained = fits
+        .iter()
+        .any(|f| f.residual == closest && f.residual <= MIX_RESIDUAL * f.length);
+    if !explained {
         return None;
     }
     fits.iter()
-        .filter(|f| f.0 <= closest + MIX_TIE)
-        .max_by(|a, b| a.1.total_cmp(&b.1))
-        .map(|f| f.2)
+        .filter(|f| f.residual <= closest + noise)
+        .map(|f| f.alpha.clamp(0.0, 1.0))
+        .reduce(f32::min)
+}
+
+/// A pixel's colour unmixed against one surface colour `f`: `c − b ≈ −α·b + μ·f`.
+struct Unmixed {
+    /// The residual's length.
+    residual: f32,
+    /// `|f − b|`.
+    length: f32,
+    alpha: f32,
+}
+
+/// Sine of the angle between the background's colour and a surface's below which the two
+/// are taken as parallel: an 8-bit rounding of the pixel (1/255) then moves the free
+/// brightness fit's share by more than about 1/255 / (|b|·sin), too much to trust.
+const MIN_HUE_SINE: f32 = 0.2;
+
+/// The fit of `v = c − b` by the colour `f`: `v ≈ −α·b + μ·f` (`μ` free when `b` and `f`
+/// are far from parallel, else `μ = α`); `None` when `f` is the background.
+fn unmix_one(v: [f32; 3], b: [f32; 3], f: [f32; 3]) -> Option<Unmixed> {
+    let dot = |p: &[f32; 3], q: &[f32; 3]| (0..3).map(|k| p[k] * q[k]).sum::<f32>();
+    let u: [f32; 3] = std::array::from_fn(|k| f[k] - b[k]);
+    let uu = dot(&u, &u);
+    if uu <= 0.0 {
+        return None;
+    }
+    let (bb, ff, bf) = (dot(&b, &b), dot(&f, &f), dot(&b, &f));
+    let det = bb * ff - bf * bf;
+    let (alpha, mu) = if det > MIN_HUE_SINE * MIN_HUE_SINE * bb * ff {
+        // Normal equations of v = α·(−b) + μ·f.
+        let (vb, vf) = (dot(&v, &b), dot(&v, &f));
+        ((vf * bf - vb * ff) / det, (bb * vf - bf * vb) / det)
+    } else {
+        let t = dot(&v, &u) / uu;
+        (t, t)
+    };
+    let r2: f32 = (0..3)
+        .map(|k| (v[k] - mu * f[k] + alpha * b[k]).powi(2))
+        .sum();
+    Some(Unmixed {
+        residual: r2.sqrt(),
+        length: uu.sqrt(),
+        alpha,
+    })
 }
 
 fn smoothstep(a: f32, b: f32, x: f32) -> f32 {
@@ -150,6 +221,44 @@ mod tests {
         let g = 0.2126 * 0.6 + 0.7152 * 0.4 + 0.0722 * 0.1;
         let i = 5 * 12 + 2;
         assert!((s[i] - 0.5 * g).abs() < 1e-4, "{} vs {}", s[i], 0.5 * g);
+    }
+
+    #[test]
+    fn a_darker_face_of_the_same_surface_reads_as_its_coverage() {
+        // Rectangles `[x0, x1) × [y0, y1)` of one surface colour at different shades, drawn
+        // with exact area coverage on white: a lit square split by a gap 0.3 px wide (the
+        // pixels across it have only foreground around them), a dark face 0.4 px wide
+        // sharing the square's right column with the background, and a dark strip 1.3 px
+        // wide that nothing covers whole nearby (it reads against the lit colours far away).
+        let f = [0.98f32, 0.82, 0.25];
+        let rects = [
+            ([2.0f32, 8.0, 2.0, 5.0], 0.9f32),
+            ([2.0, 8.0, 5.3, 8.0], 0.9),
+            ([8.0, 8.4, 2.0, 8.0], 0.35),
+            ([13.3, 14.6, 2.5, 9.25], 0.3),
+        ];
+        let overlap = |p: u32, a: f32, b: f32| (b.min(p as f32 + 1.0) - a.max(p as f32)).max(0.0);
+        let (w, h) = (18u32, 12u32);
+        let mut img = Rgb::new(w, h, [1.0; 3]);
+        let mut want = vec![0.0f32; (w * h) as usize];
+        for y in 0..h {
+            for x in 0..w {
+                let i = (y * w + x) as usize;
+                let (mut a, mut shade) = (0.0, 0.0);
+                for ([x0, x1, y0, y1], g) in rects {
+                    let c = overlap(x, x0, x1) * overlap(y, y0, y1);
+                    a += c;
+                    shade += c * g;
+                }
+                want[i] = a;
+                img.data[i] = std::array::from_fn(|k| 1.0 - a + shade * f[k]);
+            }
+        }
+        let (m, _) = unmix(&img, [1.0; 3], 0.012, 0.03);
+        for (i, (&a, &b)) in m.iter().zip(&want).enumerate() {
+            let tol = if b < 0.05 { 0.05 } else { 1e-3 };
+            assert!((a - b).abs() <= tol, "pixel {i}: {a} vs {b}");
+        }
     }
 
     #[test]

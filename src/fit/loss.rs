@@ -242,17 +242,22 @@ pub fn sharpen(img: &[f32], width: u32, height: u32, spec: &LossSpec) -> Vec<f32
 pub fn blur(img: &[f32], w: usize, h: usize, kernel: &[f32]) -> Vec<f32> {
     let r = (kernel.len() / 2) as isize;
     let mut tmp = vec![0.0f32; w * h];
+    // Tap by tap over whole rows (each pixel still sums its taps in order), so the inner
+    // loop is a plain multiply-add over a slice.
     for y in 0..h {
         let row = &img[y * w..(y + 1) * w];
-        for x in 0..w {
-            let mut acc = 0.0;
-            for (k, &kv) in kernel.iter().enumerate() {
-                let xx = x as isize + k as isize - r;
-                if xx >= 0 && (xx as usize) < w {
-                    acc += kv * row[xx as usize];
-                }
+        let dst = &mut tmp[y * w..(y + 1) * w];
+        for (k, &kv) in kernel.iter().enumerate() {
+            let shift = k as isize - r;
+            let lo = (-shift).clamp(0, w as isize) as usize;
+            let hi = (w as isize - shift).clamp(0, w as isize) as usize;
+            if lo >= hi {
+                continue;
             }
-            tmp[y * w + x] = acc;
+            let src = &row[(lo as isize + shift) as usize..(hi as isize + shift) as usize];
+            for (d, v) in dst[lo..hi].iter_mut().zip(src) {
+                *d += kv * v;
+            }
         }
     }
     let mut out = vec![0.0f32; w * h];
@@ -467,6 +472,37 @@ mod tests {
                 };
                 assert_eq!(b.m[k], want, "({x}, {y})");
                 assert_eq!(b.s[k], want * 0.5, "({x}, {y})");
+            }
+        }
+    }
+
+    #[test]
+    fn blur_is_the_zero_padded_convolution() {
+        let kernel = gaussian_kernel(1.0);
+        let r = (kernel.len() / 2) as isize;
+        // Narrower and wider than the kernel.
+        for (w, h) in [(3usize, 2usize), (11, 9)] {
+            let img: Vec<f32> = (0..w * h).map(|i| ((i * 37) % 11) as f32 / 11.0).collect();
+            let at = |x: isize, y: isize| {
+                let inside = (0..w as isize).contains(&x) && (0..h as isize).contains(&y);
+                if inside {
+                    img[y as usize * w + x as usize]
+                } else {
+                    0.0
+                }
+            };
+            let got = blur(&img, w, h, &kernel);
+            for y in 0..h as isize {
+                for x in 0..w as isize {
+                    let mut want = 0.0f32;
+                    for (j, &kj) in kernel.iter().enumerate() {
+                        for (i, &ki) in kernel.iter().enumerate() {
+                            want += kj * ki * at(x + i as isize - r, y + j as isize - r);
+                        }
+                    }
+                    let g = got[y as usize * w + x as usize];
+                    assert!((g - want).abs() < 1e-5, "({x}, {y}): {g} vs {want}");
+                }
             }
         }
     }

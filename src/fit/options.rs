@@ -3,8 +3,8 @@
 //!
 //! [`FitOptions::default`] is the paper's loss and schedule (SGD, learning rate 0.05, ten
 //! rounds of 30 steps, σ from 2 to 0.25 pixels), opened by our proportions search, with
-//! an albedo per item, and finished on area coverage (`coverage`). The command's
-//! `--schedule far` (`command::fit::Settings::far`) is the recipe for far pictures on top.
+//! an albedo per item, and finished on area coverage (`coverage`). The command's default,
+//! `--schedule far` (`command::fit::Settings::far`), is the recipe for far pictures on top.
 //! The fields are plain data, grouped by what they set: the schedule, what the loss
 //! compares, how far a step may go, the finishing passes and the pictures. Lengths are in
 //! units of the model's size (the longest side of its bounding box) unless a field says
