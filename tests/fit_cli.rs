@@ -47,6 +47,18 @@ fn fit(target: &Path, out: &Path, extra: &[&str]) -> Output {
         .unwrap()
 }
 
+/// The main command on the chair with the variation `vary`, writing `out`.
+fn chair_varied_by(vary: &Path, out: &Path) -> Output {
+    bin()
+        .arg(repo("examples/chair.scad"))
+        .arg("--vary")
+        .arg(vary)
+        .arg("-o")
+        .arg(out)
+        .output()
+        .unwrap()
+}
+
 /// A failed fit: non-zero exit, the message mentions every `needles`, no output written.
 fn fails(target: &Path, needles: &[&str]) {
     fails_with(target, &[], needles);
@@ -120,14 +132,7 @@ fn render_then_fit_round_trip() {
     assert_eq!(side["information"].as_array().unwrap().len(), numbers.len());
     assert!(stderr(&o).contains("numbers the pictures do not determine"));
     // The main command reads it back with the variation.
-    let o = bin()
-        .arg(repo("examples/chair.scad"))
-        .arg("--vary")
-        .arg(&out)
-        .arg("-o")
-        .arg(d.join("param.scad"))
-        .output()
-        .unwrap();
+    let o = chair_varied_by(&out, &d.join("param.scad"));
     assert!(o.status.success(), "{}", stderr(&o));
     // A stale sidecar (the variant edited after the fit: here, the sidecar's record of a
     // number) is an error that names it.
@@ -135,14 +140,7 @@ fn render_then_fit_round_trip() {
     let v = stale["numbers"][0]["value"].as_f64().unwrap();
     stale["numbers"][0]["value"] = serde_json::json!(v + 1.0);
     std::fs::write(d.join("fitted.json"), stale.to_string()).unwrap();
-    let o = bin()
-        .arg(repo("examples/chair.scad"))
-        .arg("--vary")
-        .arg(&out)
-        .arg("-o")
-        .arg(d.join("param2.scad"))
-        .output()
-        .unwrap();
+    let o = chair_varied_by(&out, &d.join("param2.scad"));
     assert!(!o.status.success());
     assert!(stderr(&o).contains("E0604"), "{}", stderr(&o));
     assert!(stderr(&o).contains("fitted.json"), "{}", stderr(&o));

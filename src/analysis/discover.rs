@@ -97,6 +97,12 @@ impl Sample {
                 .as_ref()
                 .is_none_or(|pr| !pr.unseen.contains(&p))
     }
+
+    /// The parts the variation says nothing about (those it does not [`Sample::sees`]).
+    pub fn unshown(&self) -> Vec<usize> {
+        let unseen = self.precision.iter().flat_map(|p| p.unseen.iter().copied());
+        self.optional.iter().copied().chain(unseen).collect()
+    }
 }
 
 /// The greedy order, its scores and the distortion after each step.

@@ -286,6 +286,7 @@ fn target_files(dir: &std::path::Path) -> Vec<PathBuf> {
 /// whole or not at all)
 /// and says what was fitted.
 fn write_results(args: &Args, fitted: Fitted) -> ExitCode {
+    let sidecar = sidecar_path(&args.output);
     let unseen = fitted
         .report
         .slots
@@ -301,14 +302,11 @@ fn write_results(args: &Args, fitted: Fitted) -> ExitCode {
         fitted.start_loss(),
         fitted.end_loss(),
         args.output.display(),
-        sidecar_path(&args.output).display()
+        sidecar.display()
     );
     let mut outputs: Vec<(PathBuf, Vec<u8>)> = vec![
         (args.output.clone(), fitted.scad.into_bytes()),
-        (
-            sidecar_path(&args.output),
-            fitted.uncertainty.to_json().into_bytes(),
-        ),
+        (sidecar, fitted.uncertainty.to_json().into_bytes()),
     ];
     if let Some(path) = &args.report {
         match serde_json::to_string_pretty(&fitted.report) {

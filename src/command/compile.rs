@@ -189,16 +189,21 @@ pub fn reparameterize_telling(
     let faces = Faces::of(model);
     // Typed variations drop a part by a zero or by leaving it out, so nothing of a part a
     // variation does without is left for noise to displace: the absent test is exact.
-    // (Variations fitted from pictures would bring their own per-number deviations.)
+    // (A fitted variation's deviations weigh its faces in discovery, not this test.)
     let optional = optional_parts(model, &raw, &sim, 0.0);
     let values = held_where_skipped(model, &raw, &optional);
     // A variation fitted to pictures says how well they show each face.
-    let precision: Vec<Option<Precision>> = variations
+    let samples: Vec<Sample> = values
         .iter()
-        .map(|v| {
-            v.uncertainty
+        .zip(&optional)
+        .zip(variations)
+        .map(|((v, o), var)| Sample {
+            values: v.clone(),
+            optional: o.clone(),
+            precision: var
+                .uncertainty
                 .as_ref()
-                .map(|u| Precision::of(&faces, u, model.size()))
+                .map(|u| Precision::of(&faces, u, model.size())),
         })
         .collect();
     // Discovery (or the prior): which relations to keep.
@@ -206,16 +211,6 @@ pub fn reparameterize_telling(
         by_prior(model, &candidates, options.all_constraints)
     } else {
         let curve = options.distortion_curve.then_some(&sim);
-        let samples: Vec<Sample> = values
-            .iter()
-            .zip(&optional)
-            .zip(&precision)
-            .map(|((v, o), p)| Sample {
-                values: v.clone(),
-                optional: o.clone(),
-                precision: p.clone(),
-            })
-            .collect();
         by_discovery(model, &candidates, &faces, curve, &samples, step)
     };
     // Reparameterization: the kept rows solved with anchors; the variations projected.
@@ -231,14 +226,7 @@ pub fn reparameterize_telling(
     // Emit: sliders, blends and switches, the file and its presets.
     let tolerance = Tolerance::for_size(model.size());
     // A contact is evidence where the variation shows both parts.
-    let unshown: Vec<Vec<usize>> = optional
-        .iter()
-        .zip(&precision)
-        .map(|(o, p)| {
-            let unseen = p.iter().flat_map(|p| p.unseen.iter().copied());
-            o.iter().copied().chain(unseen).collect()
-        })
-        .collect();
+    let unshown: Vec<Vec<usize>> = samples.iter().map(Sample::unshown).collect();
     let contacts = common_contacts(model, &raw, &unshown, contact_slack(&choice, tolerance));
     let eps = tolerance.epsilon;
     let (input_free, mut variation_free, slider_ranges) =

@@ -17,8 +17,8 @@ use crate::fit::loss::{LossSpec, Target};
 use crate::fit::optimize::Optimizer;
 use crate::fit::targets::{TargetSet, load_target_dir};
 use crate::fit::{
-    DAMPED_FLOOR, FitError, FitOptions, FitResult, Fitter, Parametric, Stage, check,
-    constraint_basis, staged,
+    DAMPED_FLOOR, FitError, FitOptions, FitResult, Parametric, Stage, constraint_basis,
+    fit_measured, staged,
 };
 use crate::front::source::SourceMap;
 use crate::ir::Model;
@@ -370,15 +370,15 @@ impl Job {
             staged(model, self.opts.rounds, warm)
         };
         let problem = Parametric::new(model);
-        let (cameras, targets) = (&self.set.cameras, &self.targets);
-        let backend = self.backend.as_mut();
-        let run = check(&problem, cameras, targets, backend)
-            .and_then(|_| Fitter::new(&problem, cameras, targets, &stages, &self.opts))
-            .map(|fitter| {
-                let result = fitter.run(backend, progress);
-                let information = fitter.information(backend, &result);
-                (result, information)
-            });
+        let run = fit_measured(
+            &problem,
+            &self.set.cameras,
+            &self.targets,
+            &stages,
+            self.backend.as_mut(),
+            &self.opts,
+            progress,
+        );
         let (result, information) = match run {
             Ok(r) => r,
             Err(e) => return Err(self.fit_failure(&e)),

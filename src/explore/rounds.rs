@@ -15,7 +15,7 @@ use super::net::ServerError;
 use super::run::{RunFolder, State};
 use crate::fit::loss::Target;
 use crate::fit::uncertainty::Information;
-use crate::fit::{FitOptions, Fitter, Parametric, Stage, check};
+use crate::fit::{FitOptions, Parametric, Progress, Stage, fit, fit_measured};
 use crate::ir::Model;
 use crate::render::camera::{Camera, CameraSpec, OPENSCAD_FOV, Projection};
 use crate::render::image::{Rgb, picture};
@@ -324,14 +324,13 @@ impl<'a> Explorer<'a> {
         };
         let stages = [Stage::slots(1)];
         let last = round + 1 >= self.settings.rounds.max(1);
-        let backend = &mut CpuBackend;
-        let fitted = check(&problem, cameras, &targets, backend)
-            .and_then(|_| Fitter::new(&problem, cameras, &targets, &stages, &opts))
-            .map(|fitter| {
-                let r = fitter.run(backend, &mut |_| {});
-                let information = last.then(|| fitter.information(backend, &r));
-                (r, information)
-            });
+        let (b, p): (&mut CpuBackend, &mut dyn FnMut(&Progress)) = (&mut CpuBackend, &mut |_| {});
+        let fitted = if last {
+            fit_measured(&problem, cameras, &targets, &stages, b, &opts, p)
+                .map(|(r, i)| (r, Some(i)))
+        } else {
+            fit(&problem, cameras, &targets, &stages, b, &opts, p).map(|r| (r, None))
+        };
         match fitted {
             Ok((r, information)) => Ok((r.x, r.end_loss.iter().sum(), information)),
             Err(e) => Err(ExploreError::Run(format!("round {}: {e}", round + 1))),

@@ -177,6 +177,24 @@ pub fn fit(
     Ok(fitter.run(backend, progress))
 }
 
+/// [`fit`], then how well the pictures determine each number at its result
+/// ([`Fitter::information`]).
+pub fn fit_measured(
+    problem: &Parametric,
+    cameras: &[Camera],
+    targets: &[Target],
+    stages: &[Stage],
+    backend: &mut dyn Backend,
+    opts: &FitOptions,
+    progress: &mut dyn FnMut(&Progress),
+) -> Result<(FitResult, Information), FitError> {
+    check(problem, cameras, targets, backend)?;
+    let fitter = Fitter::new(problem, cameras, targets, stages, opts)?;
+    let result = fitter.run(backend, progress);
+    let information = fitter.information(backend, &result);
+    Ok((result, information))
+}
+
 /// A fit set up: what its start fixes. [`Fitter::run`] runs it.
 pub struct Fitter<'a> {
     opts: &'a FitOptions,

@@ -43,7 +43,7 @@ pub mod stages;
 pub mod targets;
 pub mod uncertainty;
 
-pub use fitter::{FitError, FitResult, Fitter, Progress, Step, check, fit};
+pub use fitter::{FitError, FitResult, Fitter, Progress, Step, check, fit, fit_measured};
 pub use options::{DAMPED_FLOOR, FitOptions, HARD_SIGMA};
 pub use parametric::Parametric;
 pub use polish::polish;
