@@ -216,12 +216,18 @@ fn orthonormal_columns(m: &DMatrix<f64>) -> DMatrix<f64> {
 }
 
 /// An orthonormal basis of the null space of `c` (m × d): d × (d − rank).
+///
+/// The basis depends only on the null space itself and the slots' order, never on how the
+/// rows that cut it out were written: relations that add nothing (a redundant row) or the
+/// same relations in another order give the same basis, so they cannot change a fit's
+/// path. It is Gram–Schmidt over the projections of the slots' unit vectors onto the null
+/// space, in slot order: the first vector is as close to slot 0 as the space allows.
 pub fn null_space(c: &DMatrix<f64>) -> DMatrix<f64> {
     let d = c.ncols();
     if c.nrows() == 0 {
         return DMatrix::identity(d, d);
     }
-    // Eigenvectors of CᵀC with (near) zero eigenvalues.
+    // Eigenvectors of CᵀC with (near) zero eigenvalues: some basis of the null space.
     let ctc = c.transpose() * c;
     let eig = ctc.symmetric_eigen();
     let max = eig.eigenvalues.iter().fold(0.0f64, |a, &v| a.max(v.abs()));
@@ -233,7 +239,36 @@ pub fn null_space(c: &DMatrix<f64>) -> DMatrix<f64> {
     if cols.is_empty() {
         return DMatrix::zeros(d, 0);
     }
-    DMatrix::from_columns(&cols)
+    canonical_basis(&DMatrix::from_columns(&cols))
+}
+
+/// The canonical orthonormal basis of the span of `n`'s orthonormal columns (see
+/// [`null_space`]): the projector `N Nᵀ` is the same for every basis of the span, and its
+/// columns taken in order and orthonormalised give the same vectors.
+fn canonical_basis(n: &DMatrix<f64>) -> DMatrix<f64> {
+    let k = n.ncols();
+    let projector = n * n.transpose();
+    let mut out: Vec<DVector<f64>> = Vec::with_capacity(k);
+    // A slot whose unit vector is (nearly) orthogonal to the span, or to what is already
+    // taken, adds no direction: well above round-off, well below a unit column's share.
+    let cut = FIT_RANK_RELATIVE.sqrt();
+    for j in 0..projector.ncols() {
+        if out.len() == k {
+            break;
+        }
+        let mut v = projector.column(j).into_owned();
+        for u in &out {
+            v -= u * u.dot(&v);
+        }
+        let norm = v.norm();
+        if norm > cut {
+            out.push(v / norm);
+        }
+    }
+    if out.len() < k {
+        return n.clone();
+    }
+    DMatrix::from_columns(&out)
 }
 
 #[cfg(test)]
@@ -292,5 +327,20 @@ mod tests {
         assert_eq!(n.ncols(), 2);
         assert!((&c * &n).norm() < 1e-12);
         assert!((n.transpose() * &n - DMatrix::identity(2, 2)).norm() < 1e-12);
+    }
+
+    #[test]
+    fn null_space_basis_ignores_redundant_rows() {
+        // The same space cut out by one row, or by it and a redundant multiple of it
+        // beside another: the same basis, vector for vector.
+        let one = DMatrix::from_row_slice(2, 4, &[1.0, -1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 1.0]);
+        let more = DMatrix::from_row_slice(
+            3,
+            4,
+            &[0.0, 0.0, 2.0, 2.0, 1.0, -1.0, 0.0, 0.0, 3.0, -3.0, 1.0, 1.0],
+        );
+        let (a, b) = (null_space(&one), null_space(&more));
+        assert_eq!(a.ncols(), 2);
+        assert!((a - b).norm() < 1e-9);
     }
 }
