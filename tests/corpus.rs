@@ -2,8 +2,10 @@
 //! run as a new user would: `reparamc model.scad -o out.scad`, no variations. Each output
 //! must render in OpenSCAD equal to its input at default values (their `.csg` exports), have
 //! sliders when the model has numbers, and carry no machine-made name: no counter suffix,
-//! no name without a letter, no description like "Width 2 of the chair". The test prints
-//! the slider counts and where the names came from.
+//! no name without a letter, no description like "Width 2 of the chair"; and where the
+//! author named some of the numbers (variables, module parameters), at most three sliders
+//! more than those. The repository's examples are held to the same. The test prints the slider counts
+//! and where the names came from.
 
 mod common;
 
@@ -29,6 +31,9 @@ struct Outcome {
     problems: Vec<String>,
     sliders: Vec<(String, String)>,
     numbers: usize,
+    /// How many of the numbers that drive parts the author named (variables, vectors a
+    /// variable holds, module parameters and arguments).
+    author_variables: usize,
     /// Every identifier of the input: the author's own names.
     identifiers: HashSet<String>,
 }
@@ -61,9 +66,9 @@ fn machine_made(name: &str, description: &str, author: &HashSet<String>) -> Opti
     None
 }
 
-/// The main job on `model` with no variations: its results, the model's own text and how
-/// many numbers it has.
-fn compile(model: &Path) -> (Compiled, String, usize) {
+/// The main job on `model` with no variations: its results, the model's own text, how
+/// many numbers it has and how many of them the author named.
+fn compile(model: &Path) -> (Compiled, String, usize, usize) {
     let mut sources = SourceMap::new();
     let (loaded, evaluated) = match reparamc::load_model_parsed(&mut sources, model) {
         Ok(x) => x,
@@ -77,11 +82,13 @@ fn compile(model: &Path) -> (Compiled, String, usize) {
         &Options::default(),
     );
     let text = sources.text(loaded.main).to_string();
-    (compiled, text, evaluated.model.slots.len())
+    let slots = &evaluated.model.slots;
+    let named = slots.iter().filter(|s| s.authored).count();
+    (compiled, text, slots.len(), named)
 }
 
 fn run(model: &Path) -> Outcome {
-    let (compiled, text, numbers) = compile(model);
+    let (compiled, text, numbers, author_variables) = compile(model);
     let out = tempfile(model, "scad");
     std::fs::write(&out, &compiled.scad).unwrap();
     let mut problems = compare_parts(
@@ -102,11 +109,19 @@ fn run(model: &Path) -> Outcome {
     if numbers > 0 && sliders.is_empty() {
         problems.push(format!("{numbers} numbers and no slider"));
     }
+    // Issue 14: the author's named numbers come first, and at most three sliders more.
+    if author_variables > 0 && sliders.len() > author_variables + 3 {
+        problems.push(format!(
+            "{} sliders for {author_variables} numbers the author named (at most 3 more)",
+            sliders.len()
+        ));
+    }
     Outcome {
         model: model.to_path_buf(),
         problems,
         sliders,
         numbers,
+        author_variables,
         identifiers,
     }
 }
@@ -155,14 +170,34 @@ fn every_corpus_model_has_its_source_and_licence() {
 
 #[test]
 fn corpus_models_come_back_equal_with_names_a_person_wrote() {
-    let models = scad_files("tests/corpus");
-    let outcomes = parallel(&models, |m| run(m));
+    check_names_and_counts(&scad_files("tests/corpus"));
+}
+
+/// The repository's examples are held to the same: no machine-made name, the author's
+/// variables first.
+#[test]
+fn examples_come_back_equal_with_names_a_person_wrote() {
+    let mut models = scad_files("examples");
+    models.extend(scad_files("examples/paper"));
+    check_names_and_counts(&models);
+}
+
+fn check_names_and_counts(models: &[PathBuf]) {
+    let outcomes = parallel(models, |m| run(m));
     let mut failures = Vec::new();
     let (mut total, mut author, mut roles, mut order) = (0, 0, 0, 0);
-    println!("{:<40} {:>7} {:>7}", "model", "numbers", "sliders");
+    println!(
+        "{:<40} {:>7} {:>7} {:>7}",
+        "model", "numbers", "named", "sliders"
+    );
     for o in &outcomes {
         let stem = o.model.file_name().unwrap().to_string_lossy().into_owned();
-        println!("{stem:<40} {:>7} {:>7}", o.numbers, o.sliders.len());
+        println!(
+            "{stem:<40} {:>7} {:>7} {:>7}",
+            o.numbers,
+            o.author_variables,
+            o.sliders.len()
+        );
         for (n, d) in &o.sliders {
             println!("    {n:<36} {d}");
             total += 1;
@@ -207,7 +242,7 @@ fn machine_made_names_are_recognised() {
 fn sliders_of(text: &str) -> Vec<(String, String, f64, f64)> {
     let path = tempfile(Path::new("inline.scad"), "scad");
     std::fs::write(&path, text).unwrap();
-    let (compiled, _, _) = compile(&path);
+    let (compiled, ..) = compile(&path);
     let _ = std::fs::remove_file(&path);
     compiled
         .report

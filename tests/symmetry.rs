@@ -34,9 +34,55 @@ fn table(rng: &mut Rng) -> String {
         typed(rng, 2.0, 6.0),
     );
     let (l, h) = (typed(rng, 3.0, 8.0), typed(rng, 30.0, 80.0));
-    let (ix, iy) = (typed(rng, 1.0, 10.0), typed(rng, 1.0, 10.0));
-    let (ox, oy) = (typed(rng, -50.0, 50.0), typed(rng, -50.0, 50.0));
+    let inset = [typed(rng, 1.0, 10.0), typed(rng, 1.0, 10.0)];
+    let at = [typed(rng, -50.0, 50.0), typed(rng, -50.0, 50.0)];
     let round = rng.next() < 0.4;
+    top_on_legs([w, d, t], [l, h], inset, at, round)
+}
+
+/// A chair as people type one: a seat on four legs, flush with its corners or set in
+/// equally from both sides, and a back panel standing on the seat's rear edge. Parts 0–4
+/// as in [`table`], part 5 the back.
+fn chair(rng: &mut Rng) -> String {
+    let (w, d, t) = (
+        typed(rng, 36.0, 56.0),
+        typed(rng, 34.0, 52.0),
+        typed(rng, 2.0, 5.0),
+    );
+    let (l, h) = (typed(rng, 3.0, 6.0), typed(rng, 38.0, 50.0));
+    let i = if rng.next() < 0.4 {
+        0.0
+    } else {
+        typed(rng, 1.0, 6.0)
+    };
+    let at = [typed(rng, -50.0, 50.0), typed(rng, -50.0, 50.0)];
+    let round = rng.next() < 0.4;
+    let (bt, bh) = (typed(rng, 2.0, 5.0), typed(rng, 30.0, 50.0));
+    let mut s = top_on_legs([w, d, t], [l, h], [i, i], at, round);
+    s += &format!(
+        "translate([{}, {}, {}]) cube([{}, {}, {}]);\n",
+        num(at[0]),
+        num(at[1] + d - bt),
+        num(h + t),
+        num(w),
+        num(bt),
+        num(bh)
+    );
+    s
+}
+
+/// A top of `[w, d, t]` at `at` and height `h`, on four legs `l` thick set in by `inset`
+/// on x and y: boxes or (`round`) cylinders.
+fn top_on_legs(
+    top: [f64; 3],
+    [l, h]: [f64; 2],
+    inset: [f64; 2],
+    at: [f64; 2],
+    round: bool,
+) -> String {
+    let [w, d, t] = top;
+    let [ox, oy] = at;
+    let [ix, iy] = inset;
     let mut s = format!(
         "translate([{}, {}, {}]) cube([{}, {}, {}]);\n",
         num(ox),
@@ -134,6 +180,14 @@ fn compile(name: &str, text: &str) -> (PathBuf, Compiled) {
 
 /// The world centre of every part OpenSCAD exports for `model` at `defs`.
 fn centres(model: &Path, defs: &[String]) -> Vec<[f64; 3]> {
+    boxes(model, defs)
+        .iter()
+        .map(|[lo, hi]| std::array::from_fn(|k| 0.5 * (lo[k] + hi[k])))
+        .collect()
+}
+
+/// The world bounding box of every part OpenSCAD exports for `model` at `defs`.
+fn boxes(model: &Path, defs: &[String]) -> Vec<[[f64; 3]; 2]> {
     let csg = tempfile(model, "csg");
     let args = defs.iter().flat_map(|d| ["-D".to_string(), d.clone()]);
     let run = Command::new("openscad")
@@ -155,7 +209,7 @@ fn centres(model: &Path, defs: &[String]) -> Vec<[f64; 3]> {
         .iter()
         .map(|p| {
             let (lo, hi) = part_from_csg(p).world_bounds();
-            std::array::from_fn(|k| 0.5 * (lo[k] + hi[k]))
+            [lo, hi]
         })
         .collect()
 }
@@ -177,36 +231,92 @@ fn settings(compiled: &Compiled, rng: &mut Rng, count: usize) -> Vec<Vec<String>
         .collect()
 }
 
-#[test]
-fn table_legs_stay_mirrored_about_the_top_at_random_settings() {
-    let mut rng = Rng(0x5eed_7ab1e);
-    let mut failures = Vec::new();
-    for k in 0..6 {
-        let text = table(&mut rng);
-        let (out, compiled) = compile(&format!("table{k}"), &text);
-        let sliders = compiled.report.free_variables.len();
-        if sliders > 8 {
-            failures.push(format!("table {k}: {sliders} sliders (at most 8)\n{text}"));
-        }
-        for defs in settings(&compiled, &mut rng, 5) {
-            let c = centres(&out, &defs);
-            // OpenSCAD's export prints six significant digits.
-            let tol = 1e-4 * 200.0;
-            // Mirror pairs across x (same row) and across y (same column).
-            for (axis, pairs) in [(0, [(1, 2), (3, 4)]), (1, [(1, 3), (2, 4)])] {
-                for (a, b) in pairs {
-                    let off = c[a][axis] + c[b][axis] - 2.0 * c[0][axis];
-                    if off.abs() > tol {
-                        failures.push(format!(
-                            "table {k}, legs {a} and {b} off by {off} on axis {axis} at {}\n{text}",
-                            defs.join(" ")
-                        ));
-                    }
+/// Checks `count` random settings of `out`: the legs (parts 1–4) mirrored about the top's
+/// centre (part 0) on x and y, and, with `equal_insets`, each leg as far from the top's
+/// nearer side on x as on y.
+fn check_legs(
+    what: &str,
+    out: &Path,
+    compiled: &Compiled,
+    rng: &mut Rng,
+    equal_insets: bool,
+    failures: &mut Vec<String>,
+) {
+    for defs in settings(compiled, rng, 5) {
+        let b = boxes(out, &defs);
+        let c: Vec<[f64; 3]> = b
+            .iter()
+            .map(|[lo, hi]| std::array::from_fn(|k| 0.5 * (lo[k] + hi[k])))
+            .collect();
+        let at = defs.join(" ");
+        // OpenSCAD's export prints six significant digits.
+        let tol = 1e-4 * 200.0;
+        // Mirror pairs across x (same row) and across y (same column).
+        for (axis, pairs) in [(0, [(1, 2), (3, 4)]), (1, [(1, 3), (2, 4)])] {
+            for (a, b) in pairs {
+                let off = c[a][axis] + c[b][axis] - 2.0 * c[0][axis];
+                if off.abs() > tol {
+                    failures.push(format!(
+                        "{what}, legs {a} and {b} off by {off} on axis {axis} at {at}"
+                    ));
                 }
             }
         }
+        if equal_insets {
+            // The front left leg is as far in from the top's left side as from its front;
+            // with the mirror pairs, so is every leg from its own corner.
+            let (leg, top) = (b[1][0], b[0][0]);
+            let off = (leg[0] - top[0]) - (leg[1] - top[1]);
+            if off.abs() > tol {
+                failures.push(format!("{what}: insets differ by {off} at {at}"));
+            }
+        }
+    }
+}
+
+/// Draws six models with `draw`, re-parameterizes each without variations and checks that
+/// it has at most eight sliders and that its legs keep their placement ([`check_legs`]).
+fn legs_hold_with_at_most_eight_sliders(
+    what: &str,
+    seed: u64,
+    draw: fn(&mut Rng) -> String,
+    equal_insets: bool,
+) {
+    let mut rng = Rng(seed);
+    let mut failures = Vec::new();
+    for k in 0..6 {
+        let text = draw(&mut rng);
+        let (out, compiled) = compile(&format!("{what}{k}"), &text);
+        let names: Vec<&str> = compiled
+            .report
+            .free_variables
+            .iter()
+            .map(|v| v.name.as_str())
+            .collect();
+        if names.len() > 8 {
+            failures.push(format!(
+                "{what} {k}: {} sliders (at most 8): {names:?}\n{text}",
+                names.len()
+            ));
+        }
+        let mut found = Vec::new();
+        let label = format!("{what} {k}");
+        check_legs(&label, &out, &compiled, &mut rng, equal_insets, &mut found);
+        failures.extend(found.into_iter().map(|f| format!("{f}\n{text}")));
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+#[test]
+fn table_legs_stay_mirrored_about_the_top_at_random_settings() {
+    legs_hold_with_at_most_eight_sliders("table", 0x5eed_7ab1e, table, false);
+}
+
+/// Issue 14's target for a plain chair: a flat chair with a back and no comments gets at
+/// most eight sliders, and its legs stay mirrored and equally inset at random settings.
+#[test]
+fn chair_legs_stay_mirrored_and_inset_with_at_most_eight_sliders() {
+    legs_hold_with_at_most_eight_sliders("chair", 0xc4a1_5eed, chair, true);
 }
 
 #[test]

@@ -6,12 +6,15 @@
 //! extents. The fifth, tangency, pairs a round part's side plane with a face plane or
 //! another round side normal to the same axis (a board on an axle, wheels on one floor); it
 //! is offered to discovery but not counted among the paper's base constraints; so are mirror
-//! symmetry and equal spacing of placements (`placement`), which speak of parts' mid-planes.
+//! symmetry and equal spacing of placements (`placement`), which speak of parts' mid-planes,
+//! and equal insets (`inset`, without variations only), which speak of margins between
+//! touching parts' faces.
 //! A candidate holds when each of its equations' residuals is within the model's
 //! tolerance. Features are sorted by value and paired inside a sliding window, so the work is
 //! O(n log n + pairs), never all pairs. Every holding pair is counted, redundant or not: that
 //! count is the paper's "base constraints".
 
+use super::inset::{FaceIndex, face_index, inset_candidates};
 use crate::ir::{Affine, Feature, FeatureKind, Model};
 use crate::tolerance::Tolerance;
 use serde::Serialize;
@@ -32,6 +35,9 @@ pub enum RelationKind {
     /// Three repeated parts in a row at equal gaps (`placement`): not one of the paper's
     /// kinds.
     Spaced,
+    /// A part set in from a touching, wider part by equal margins on two axes (`inset`):
+    /// not one of the paper's kinds.
+    Inset,
 }
 
 impl RelationKind {
@@ -44,7 +50,7 @@ impl RelationKind {
     ];
 
     /// Every kind discovery knows.
-    pub const ALL: [RelationKind; 7] = [
+    pub const ALL: [RelationKind; 8] = [
         RelationKind::Coplanar,
         RelationKind::Coaxial,
         RelationKind::Coincident,
@@ -52,6 +58,7 @@ impl RelationKind {
         RelationKind::Tangent,
         RelationKind::Symmetric,
         RelationKind::Spaced,
+        RelationKind::Inset,
     ];
 
     pub fn name(self) -> &'static str {
@@ -63,6 +70,7 @@ impl RelationKind {
             RelationKind::Tangent => "tangent",
             RelationKind::Symmetric => "symmetric",
             RelationKind::Spaced => "spaced",
+            RelationKind::Inset => "inset",
         }
     }
 
@@ -75,6 +83,7 @@ impl RelationKind {
             RelationKind::Tangent => "is tangent to",
             RelationKind::Symmetric => "mirrors",
             RelationKind::Spaced => "is evenly spaced with",
+            RelationKind::Inset => "is set in as far as",
         }
     }
 }
@@ -135,6 +144,10 @@ impl Candidate {
                 let mid = self.more.first().map_or(f64::NAN, |&m| first(m));
                 vec![a[0] - 2.0 * mid + b[0]]
             }
+            RelationKind::Inset => match self.more.as_slice() {
+                [oa, ob] => vec![a[0] - first(*oa) - b[0] + first(*ob)],
+                _ => vec![f64::NAN],
+            },
             _ => a.iter().zip(&b).map(|(x, y)| x - y).collect(),
         }
     }
@@ -185,6 +198,18 @@ impl Candidates {
                     .first()
                     .map_or("", |&m| self.features[m].label.as_str());
                 format!("{a}, {mid} and {b} are evenly spaced{more}")
+            }
+            RelationKind::Inset => {
+                let label = |i: usize| {
+                    c.more
+                        .get(i)
+                        .map_or("", |&m| self.features[m].label.as_str())
+                };
+                format!(
+                    "{a} is as far from {} as {b} is from {}{more}",
+                    label(0),
+                    label(1)
+                )
             }
             _ => format!("{a} {} {b}{more}", c.kind.verb()),
         }
@@ -277,25 +302,27 @@ pub const LARGE_RUN: usize = 32;
 pub const RUN_NEIGHBOURS: usize = 8;
 
 /// One feature per class of identical features (same relation group, same forms), with
-/// each class's size.
-fn feature_classes(model: &Model) -> (Vec<AffineFeature>, Vec<usize>) {
+/// each class's size, and which class holds each part's face planes (for `inset`).
+fn feature_classes(model: &Model) -> (Vec<AffineFeature>, Vec<usize>, FaceIndex) {
     type Key = (Option<(RelationKind, u8)>, bool, Vec<u64>);
     let mut class_of: std::collections::HashMap<Key, usize> = Default::default();
     let mut features: Vec<AffineFeature> = Vec::new();
     let mut class_sizes: Vec<usize> = Vec::new();
-    for f in affine_features(model) {
+    let raw = affine_features(model);
+    let mut member_class = Vec::with_capacity(raw.len());
+    for f in &raw {
         let side = matches!(f.kind, FeatureKind::Side { .. });
         let key = (relation_of(f.kind), side, form_key(&f.forms));
-        match class_of.get(&key) {
-            Some(&i) => class_sizes[i] += 1,
-            None => {
-                class_of.insert(key, features.len());
-                features.push(f);
-                class_sizes.push(1);
-            }
-        }
+        let class = *class_of.entry(key).or_insert_with(|| {
+            features.push(f.clone());
+            class_sizes.push(0);
+            features.len() - 1
+        });
+        class_sizes[class] += 1;
+        member_class.push(class);
     }
-    (features, class_sizes)
+    let faces = face_index(&raw, &member_class);
+    (features, class_sizes, faces)
 }
 
 /// The relation of `kind` between features `a < b`: their forms' differences, zero.
@@ -334,7 +361,7 @@ fn candidate(
 /// pair is listed.
 pub fn find_candidates_for(model: &Model, variations: &[Vec<f64>]) -> Candidates {
     let tolerance = Tolerance::for_size(model.size());
-    let (features, class_sizes) = feature_classes(model);
+    let (features, class_sizes, faces) = feature_classes(model);
     let mut identical: std::collections::BTreeMap<RelationKind, usize> = Default::default();
     let mut groups: std::collections::BTreeMap<(RelationKind, u8), Vec<usize>> = Default::default();
     for (i, f) in features.iter().enumerate() {
@@ -431,6 +458,15 @@ pub fn find_candidates_for(model: &Model, variations: &[Vec<f64>]) -> Candidates
         &class_sizes,
         &tolerance,
     ));
+    // Equal insets are offered only without variations (the structural prior, the fit's
+    // stages). With variations, a kept inset makes a derived size a difference of free
+    // variables (a shelf's depth = its width + the top's depth − the top's width), which
+    // a box of ranges cannot keep positive at its corners without clamping presets off
+    // their variations (the paper table's fell to IoU 0.04–0.44): it needs a slider of its
+    // own first, as contacts have (`contact_vars`).
+    if variations.is_empty() {
+        list.extend(inset_candidates(model, &features, &faces, &tolerance));
+    }
     list.sort_by_key(|c| (c.kind, c.a, c.b));
     identical.retain(|_, n| *n > 0);
     unlisted.retain(|_, n| *n > 0);

@@ -20,6 +20,7 @@ use crate::front::ast::{Expr, ExprKind, InstanceKind, Stmt, StmtKind};
 use crate::front::load::Loaded;
 use crate::front::walk::{Visitor, visit_stmts};
 use crate::ir::Model;
+use crate::tolerance::Tolerance;
 use roles::{Label, ordinal, part_labels};
 use std::collections::{HashMap, HashSet};
 
@@ -280,7 +281,11 @@ fn common_place(labels: &[Label], parts: &[usize]) -> Vec<String> {
 /// `wheel_radius` → `wheel_radius`).
 fn join_name(prefix: &[String], role: &str) -> String {
     let role_words: Vec<&str> = role.split('_').filter(|w| !w.is_empty()).collect();
-    let mut p: Vec<&str> = prefix.iter().map(String::as_str).collect();
+    let mut p: Vec<&str> = prefix
+        .iter()
+        .flat_map(|w| w.split('_'))
+        .filter(|w| !w.is_empty())
+        .collect();
     while let (Some(l), Some(r)) = (p.last(), role_words.first()) {
         if l.eq_ignore_ascii_case(r) {
             p.pop();
@@ -383,16 +388,17 @@ fn drafts(model: &Model, sol: &Solution) -> Vec<Draft> {
                 })
                 .map(|s| s.id as usize)
                 .collect();
-            let owners: Vec<String> = group.iter().map(|&s| owners_of[s].clone()).collect();
-            let same_role = group
+            // A size that also places parts (a leg's height is the seat's z) is named for
+            // the sizes it sets: the places follow from them.
+            let sizes: Vec<usize> = group
                 .iter()
-                .all(|&s| without_counter(split_name(&model.slots[s].name).1) == role);
-            let role = if same_role || matches!(role, "x" | "y" | "z") {
-                role
-            } else {
-                "size"
-            };
-            let parts: Vec<usize> = group.iter().flat_map(|&s| by_slot[s].clone()).collect();
+                .copied()
+                .filter(|&s| whole_size(model, s, &by_slot[s]))
+                .collect();
+            let named = if sizes.is_empty() { group } else { sizes };
+            let owners: Vec<String> = named.iter().map(|&s| owners_of[s].clone()).collect();
+            let parts: Vec<usize> = named.iter().flat_map(|&s| by_slot[s].clone()).collect();
+            let role = group_role(model, &by_slot, &named, role);
             let owner_refs: Vec<&str> = owners.iter().map(String::as_str).collect();
             let own = owners_of[f as usize].as_str();
             let prefix = naming_words(&owner_refs, own);
@@ -403,7 +409,7 @@ fn drafts(model: &Model, sol: &Solution) -> Vec<Draft> {
                 } else {
                     vec![prefix]
                 },
-                role: role.to_string(),
+                role,
                 place: common_place(&labels, &parts),
                 source: words(split_name(&slot.name).0)
                     .iter()
@@ -414,6 +420,65 @@ fn drafts(model: &Model, sol: &Solution) -> Vec<Draft> {
             }
         })
         .collect()
+}
+
+/// A slot's role without a repeat number: `height`, `radius`, `x`, an argument's name.
+fn slot_role(model: &Model, slot: usize) -> &str {
+    without_counter(split_name(&model.slots[slot].name).1)
+}
+
+/// The role of a variable that sets `slots` unchanged (`by_slot`: each slot's parts):
+/// theirs when they share one, or the first slot's position axis (`own`) when they are all
+/// positions; a part's `thickness` when every slot is the thin side of a board (a seat's
+/// height, a shelf's) or the two short sides of a square bar (a leg's width and depth);
+/// else `size`.
+fn group_role(model: &Model, by_slot: &[Vec<usize>], slots: &[usize], own: &str) -> String {
+    let mut roles: Vec<&str> = slots.iter().map(|&s| slot_role(model, s)).collect();
+    roles.sort_unstable();
+    roles.dedup();
+    let sides = roles
+        .iter()
+        .all(|r| matches!(*r, "width" | "depth" | "height"));
+    if sides && roles.len() <= 2 && slots.iter().all(|&s| thin_side(model, s, &by_slot[s])) {
+        return "thickness".into();
+    }
+    match roles.as_slice() {
+        [one] => one.to_string(),
+        _ if slots.iter().all(|&s| model.slots[s].position) => own.to_string(),
+        _ => "size".into(),
+    }
+}
+
+/// Whether `slot` is a size of each of its parts by itself (a side, or a radius: half a
+/// side), not a place nor a term of a longer sum.
+fn whole_size(model: &Model, slot: usize, parts: &[usize]) -> bool {
+    let tol = Tolerance::for_size(model.size());
+    let value = model.slots[slot].value;
+    !model.slots[slot].position
+        && !parts.is_empty()
+        && parts.iter().all(|&p| {
+            let (lo, hi) = model.parts[p].world_bounds();
+            (0..3).any(|k| {
+                let e = hi[k] - lo[k];
+                tol.equal(value, e) || tol.equal(2.0 * value, e)
+            })
+        })
+}
+
+/// Whether `slot` is the thickness of each of its parts: its thinnest side, a third or
+/// less of the next (a board), or one of two equal short sides a third or less of the
+/// long one (a square bar).
+fn thin_side(model: &Model, slot: usize, parts: &[usize]) -> bool {
+    let tol = Tolerance::for_size(model.size());
+    let value = model.slots[slot].value;
+    !parts.is_empty()
+        && parts.iter().all(|&p| {
+            let (lo, hi) = model.parts[p].world_bounds();
+            let mut e: Vec<f64> = (0..3).map(|k| hi[k] - lo[k]).collect();
+            e.sort_by(f64::total_cmp);
+            let next = if tol.equal(e[0], e[1]) { e[2] } else { e[1] };
+            tol.equal(value, e[0]) && 3.0 * e[0] <= next
+        })
 }
 
 /// A part's words: its own name where it says something, else its role and place.

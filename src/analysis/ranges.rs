@@ -90,6 +90,16 @@ pub fn nice_step(span: f64, value: f64) -> f64 {
 /// either side of its value (a size reaches half its value).
 const POSITION_RANGE: f64 = 0.1;
 
+/// How far a slider reaches to either side of `value` without variations: a place moves
+/// within the model's own scale (`size`), wherever its zero is; a size by half its value.
+pub fn reach(position: bool, value: f64, size: f64) -> f64 {
+    if position && size > 0.0 {
+        POSITION_RANGE * size
+    } else {
+        0.5 * value.abs().max(1.0)
+    }
+}
+
 /// Passes over the bounds before the box is taken as settled (each pass meets every bound
 /// broken at its start; later bounds can break earlier ones again only by round-off).
 const MAX_SHRINK_PASSES: usize = 200;
@@ -140,11 +150,8 @@ pub fn ranges(
         let position = sizes.iter().all(|b| b.a[i] == 0.0);
         let margin = if span > 0.0 {
             0.25 * span
-        } else if position && size > 0.0 {
-            // A place moves within the model's own scale, wherever its zero is.
-            POSITION_RANGE * size
         } else {
-            0.5 * input[i].abs().max(1.0)
+            reach(position, input[i], size)
         };
         lo[i] -= margin;
         hi[i] += margin;

@@ -84,7 +84,8 @@ pub struct Inspection {
     /// Tangencies of round parts' sides: beyond the paper's kinds, not in its count.
     #[serde(skip_serializing_if = "is_zero")]
     pub tangent_count: usize,
-    /// Mirror symmetries and equal spacings of placements: beyond the paper's kinds too.
+    /// Mirror symmetries, equal spacings and equal insets of placements: beyond the paper's
+    /// kinds too.
     #[serde(skip_serializing_if = "is_zero")]
     pub placement_count: usize,
     /// Pairs of features driven by the very same numbers (instances of one module or loop
@@ -174,7 +175,8 @@ pub fn inspect(sources: &SourceMap, model: &Model, candidates: &Candidates) -> I
         base_constraint_count: candidates.total(),
         tangent_count: candidates.count(RelationKind::Tangent),
         placement_count: candidates.count(RelationKind::Symmetric)
-            + candidates.count(RelationKind::Spaced),
+            + candidates.count(RelationKind::Spaced)
+            + candidates.count(RelationKind::Inset),
         constraint_counts: RelationKind::PAPER
             .iter()
             .map(|&k| (k, candidates.count(k)))

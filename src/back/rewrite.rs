@@ -141,6 +141,7 @@ mod tests {
             id,
             name: format!("s{id}"),
             variable: None,
+            authored: false,
             position: false,
             value,
             span: Span::new(0, start, end),

@@ -14,6 +14,7 @@ use crate::analysis::classes::sigmoid;
 use crate::analysis::contact_vars::keep_contacts;
 use crate::analysis::contacts::common_contacts;
 use crate::analysis::cutoff::{Cutoff, change_points};
+use crate::analysis::details::pin_details;
 use crate::analysis::discover::{Sample, Similarity};
 use crate::analysis::find_candidates_for;
 use crate::analysis::intent::{Selection, select};
@@ -221,6 +222,12 @@ pub fn reparameterize_telling(
         .collect();
     let rows: Vec<Affine> = kept.iter().flat_map(|c| c.rows.iter().cloned()).collect();
     let anchors = Anchors::of(model);
+    // Without variations, the author's named variables say which numbers are the design's.
+    let rows = if variations.is_empty() && !options.all_constraints {
+        pin_details(model, &anchors, rows)
+    } else {
+        rows
+    };
     let mut solution = solve(model, &anchors, &rows);
     let projected = project_variations(&anchors, &faces, &rows, &values, &optional);
     // Emit: sliders, blends and switches, the file and its presets.

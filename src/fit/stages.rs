@@ -75,7 +75,8 @@ pub fn constraint_basis(model: &Model) -> DMatrix<f64> {
     basis_of(&rows, model.slots.len())
 }
 
-/// The subspace of the structural prior: contacts, coaxiality, repeated parts' sizes.
+/// The subspace of the structural prior (`analysis::prior`): contacts, coaxiality,
+/// repeated parts' sizes, placements, a bar's profile.
 pub fn structure_basis(model: &Model) -> DMatrix<f64> {
     let c = crate::analysis::find_candidates(model);
     let keep = crate::analysis::prior::structural_prior(model, &c);

@@ -28,6 +28,10 @@ pub struct Slot {
     pub position: bool,
     /// The top-level variable this literal is the value of, if any.
     pub variable: Option<String>,
+    /// Whether the author's identifiers name this literal: a variable's whole value or an
+    /// element of a vector a variable holds, a module parameter's default, an argument
+    /// of a module call. What the author named is the design's; the rest are details.
+    pub authored: bool,
     pub value: f64,
     /// The literal's exact characters in the source.
     pub span: Span,

@@ -103,12 +103,18 @@ pub struct Literals {
     spans: Vec<Span>,
     values: Vec<f64>,
     named: Vec<bool>,
+    /// Named by any of the author's identifiers (see `Slot::authored`).
+    authored: Vec<bool>,
     frozen: BTreeMap<SlotId, FreezeReason>,
 }
 
 impl Literals {
     pub fn is_named(&self, id: SlotId) -> bool {
         self.named.get(id as usize).copied().unwrap_or(false)
+    }
+
+    fn is_authored(&self, id: SlotId) -> bool {
+        self.authored.get(id as usize).copied().unwrap_or(false)
     }
 }
 
@@ -155,6 +161,9 @@ impl Eval<'_> {
             self.lits.spans.push(span);
             self.lits.values.push(value);
             self.lits.named.push(self.naming.variable(span).is_some());
+            self.lits.authored.push(
+                self.naming.variable(span).is_some() || self.naming.source_name(span).is_some(),
+            );
         }
         if self.lits.frozen.contains_key(&id) {
             Num::constant(value)
@@ -560,6 +569,7 @@ fn build_model(
                 id: i as SlotId,
                 position: matches!(role, "x" | "y" | "z"),
                 variable: lits.is_named(s).then(|| name.clone()),
+                authored: lits.is_authored(s),
                 name,
                 value: lits.values[s as usize],
                 span,
