@@ -39,7 +39,7 @@ pub fn pin_details(model: &Model, anchors: &Anchors, rows: Vec<Affine>) -> Vec<A
     if literals.len() <= LITERAL_SLIDERS {
         return rows;
     }
-    let input: Vec<f64> = model.slots.iter().map(|s| s.value).collect();
+    let input = model.slot_values();
     if model.parts_at(&input).is_none() {
         return rows;
     }

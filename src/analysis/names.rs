@@ -15,6 +15,7 @@
 pub mod roles;
 
 use super::optional::Toggle;
+use super::prior::BAR_ELONGATION;
 use super::reparam::{ContactVariable, Solution};
 use crate::front::ast::{Expr, ExprKind, InstanceKind, Stmt, StmtKind};
 use crate::front::load::Loaded;
@@ -465,9 +466,9 @@ fn whole_size(model: &Model, slot: usize, parts: &[usize]) -> bool {
         })
 }
 
-/// Whether `slot` is the thickness of each of its parts: its thinnest side, a third or
-/// less of the next (a board), or one of two equal short sides a third or less of the
-/// long one (a square bar).
+/// Whether `slot` is the thickness of each of its parts: its thinnest side, with the next
+/// side at least [`BAR_ELONGATION`] times it (a board), or one of two equal short sides
+/// with the long one that many times it (a square bar, as the prior's profile).
 fn thin_side(model: &Model, slot: usize, parts: &[usize]) -> bool {
     let tol = Tolerance::for_size(model.size());
     let value = model.slots[slot].value;
@@ -477,7 +478,7 @@ fn thin_side(model: &Model, slot: usize, parts: &[usize]) -> bool {
             let mut e: Vec<f64> = (0..3).map(|k| hi[k] - lo[k]).collect();
             e.sort_by(f64::total_cmp);
             let next = if tol.equal(e[0], e[1]) { e[2] } else { e[1] };
-            tol.equal(value, e[0]) && 3.0 * e[0] <= next
+            tol.equal(value, e[0]) && BAR_ELONGATION * e[0] <= next
         })
 }
 

@@ -46,8 +46,9 @@ pub(crate) fn repeated(model: &Model, a: usize, b: usize, tol: &Tolerance) -> bo
         .all(|(x, y)| tol.equal(*x, *y))
 }
 
-/// How many times longer than its cross-section a part is to count as a bar.
-const BAR_ELONGATION: f64 = 3.0;
+/// How many times longer than its cross-section a part is to count as a bar (and a board
+/// wider than its thickness: `names` calls that side the part's thickness).
+pub(crate) const BAR_ELONGATION: f64 = 3.0;
 
 /// Whether extents `a` and `b` of `part` are the cross-section of a bar: across its long
 /// axis, which is at least [`BAR_ELONGATION`] times either.
