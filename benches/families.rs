@@ -31,7 +31,7 @@ fn seeds() -> Vec<u64> {
 fn trace(setup: Setup, r: &FamilyResult) {
     for (method, s) in [("ours", &r.ours), ("paper", &r.paper)] {
         eprintln!(
-            "seed {} {} parts {} noise {} train {} {method}: d {} dim {} iou {:.4} broken {}{} false toggles {:?} missed {:?} preset {:?} {:.3}s",
+            "seed {} {} parts {} noise {} train {} {method}: d {} dim {} iou {:.4} broken {}{} false toggles {:?} missed {:?} preset {:?} {:.3}s sigma {:.3} of {:.3}",
             r.seed,
             r.style.name(),
             r.parts,
@@ -47,7 +47,9 @@ fn trace(setup: Setup, r: &FamilyResult) {
             s.false_toggles,
             s.missed_optional,
             s.bad_preset,
-            s.seconds
+            s.seconds,
+            s.sigma.unwrap_or(0.0),
+            r.sigma
         );
     }
 }

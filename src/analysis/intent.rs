@@ -1,7 +1,7 @@
 //! Which relations are intent: discovery as one sequential test against the noise model.
 //!
 //! Every candidate's evidence is what projecting the variations onto it costs in the noise
-//! model's metric (`noise`): the squared face displacement that makes it hold, summed over
+//! model's metric (`noise`): the squared displacement that makes it hold, summed over
 //! the variations that keep both its parts. The noise `σ` is estimated from that evidence,
 //! and so is how often each class of relation is intent (`classes`). A candidate's log
 //! posterior odds of being intent are its class's prior odds plus its evidence's likelihood
@@ -27,7 +27,7 @@ use super::noise::{Evidence, NoiseModel, figures};
 use super::pool::Pool;
 use super::project::{Faces, Projection, Projector};
 use crate::ir::{Affine, Model};
-use crate::tolerance::{NOISE_MAX_SHARE, RELATIVE_ROUNDOFF, Tolerance};
+use crate::tolerance::{NOISE_CANCELLATION_SHARE, NOISE_MAX_SHARE, RELATIVE_ROUNDOFF, Tolerance};
 
 /// The order the test took the candidates in, its statistics and its answer.
 #[derive(Debug, Clone)]
@@ -130,11 +130,15 @@ struct Scores {
     scored_at: Vec<usize>,
 }
 
-/// The evidence that can tell the noise: a relation whose slots every variation leaves at
+/// The evidence that can tell the noise. A relation whose slots every variation leaves at
 /// the input's values (numbers no one changed, noised or not) is kept exactly whatever `σ`
-/// is, and pooling it would pull the estimate to the floor.
+/// is, and pooling it would pull the estimate to the floor. A relation whose residual does
+/// not cancel most of its numbers' own changes (`NOISE_CANCELLATION_SHARE`) shows nothing
+/// that tells noise from a change of design: pooled, broken relations of a model whose
+/// numbers all vary apart would pass for the noise.
 fn informative(
-    candidates: &Candidates,
+    cx: &Context<'_>,
+    input: &[f64],
     samples: &[Sample],
     evidence: &[Evidence],
 ) -> Vec<Evidence> {
@@ -144,13 +148,31 @@ fn informative(
     let moved: Vec<bool> = (0..first.values.len())
         .map(|s| samples.iter().any(|v| v.values[s] != first.values[s]))
         .collect();
-    candidates
-        .list
-        .iter()
-        .zip(evidence)
-        .filter(|(c, _)| c.rows.iter().any(|r| r.slots().any(|s| moved[s as usize])))
-        .map(|(_, e)| *e)
+    (0..cx.candidates.list.len())
+        .filter(|&c| {
+            let rows = rows_of(cx.candidates, c);
+            rows.iter().any(|r| r.slots().any(|s| moved[s as usize]))
+                && cancels(&rows, input, samples, &cx.seen[c])
+        })
+        .map(|c| evidence[c])
         .collect()
+}
+
+/// Whether `rows`' residuals over the variations that keep their parts (`seen`) cancel most
+/// of their terms' changes from the `input`.
+fn cancels(rows: &[&Affine], input: &[f64], samples: &[Sample], seen: &[bool]) -> bool {
+    let (mut residual, mut change) = (0.0, 0.0);
+    for (v, _) in samples.iter().zip(seen).filter(|(_, s)| **s) {
+        for r in rows {
+            residual += (r.eval(&v.values) - r.eval(input)).powi(2);
+            change += r
+                .terms
+                .iter()
+                .map(|&(s, a)| (a * (v.values[s as usize] - input[s as usize])).powi(2))
+                .sum::<f64>();
+        }
+    }
+    residual <= NOISE_CANCELLATION_SHARE * change
 }
 
 /// Every variation at its own values, and one projector in the noise model's metric per
@@ -172,7 +194,11 @@ fn start_points<'a, R>(
                 .position(|o| key.is_some() && *o == key)
                 .unwrap_or_else(|| {
                     sets.push(key);
-                    projectors.push(Projector::new(faces.noise_metric(&s.optional, precision)));
+                    let metric = match precision {
+                        Some(p) => faces.face_metric(&s.optional, p),
+                        None => faces.number_metric(&s.optional),
+                    };
+                    projectors.push(Projector::new(metric));
                     sets.len() - 1
                 });
             Point {
@@ -212,7 +238,9 @@ pub fn select<S: Similarity>(
         .map(|c| scores.evidence[c].unwrap_or(Evidence { cost: 0.0, dof: 0 }))
         .collect();
     let ceiling = NOISE_MAX_SHARE * model.size();
-    let noise = NoiseModel::estimate(&informative(candidates, samples, &all), floor, ceiling);
+    let input = model.slot_values();
+    let pooled = informative(&cx, &input, samples, &all);
+    let noise = NoiseModel::estimate(&pooled, floor, ceiling);
     cx.prior = prior_log_odds(model, candidates, &all, &noise, cx.size);
     let mut out = Selection {
         order: Vec::new(),
@@ -507,6 +535,36 @@ fn largest_residual(cx: &Context<'_>, c: usize, samples: &[Sample]) -> f64 {
 mod tests {
     use super::*;
 
+    #[test]
+    fn a_relation_tells_the_noise_only_when_it_cancels_its_numbers_changes() {
+        // `a = b`, both 10 at the input.
+        let row = Affine {
+            constant: 0.0,
+            terms: vec![(0, 1.0), (1, -1.0)],
+        };
+        let input = [10.0, 10.0];
+        let at = |values: &[[f64; 2]]| -> Vec<Sample> {
+            values
+                .iter()
+                .map(|v| Sample::new(v.to_vec(), Vec::new()))
+                .collect()
+        };
+        let seen = [true, true];
+        // The design moved both by 10 and 5; the relation is off by a few tenths: noise.
+        let kept = at(&[[20.0, 20.3], [5.0, 4.8]]);
+        assert!(cancels(&[&row], &input, &kept, &seen));
+        // The two moved apart as much as they moved at all: nothing tells noise here.
+        let apart = at(&[[20.0, 12.0], [5.0, 9.0]]);
+        assert!(!cancels(&[&row], &input, &apart, &seen));
+        // A variation that does not keep the relation's parts says nothing.
+        assert!(cancels(
+            &[&row],
+            &input,
+            &at(&[[20.0, 20.3], [5.0, 9.0]]),
+            &[true, false]
+        ));
+    }
+
     /// Three steps taking candidates 2, 0 and 1; the third is off by 0.25 world units.
     fn selection(sigma: f64, accepted: usize) -> Selection {
         Selection {
@@ -521,6 +579,7 @@ mod tests {
                 floor: 1e-6,
                 pooled: 10,
                 critical_z: 3.09,
+                told: true,
             },
             residual: vec![0.0, 0.25, 0.0],
         }

@@ -1,13 +1,16 @@
 //! The noise model: how far off the variations may be and a relation still be intent.
 //!
-//! Variations are noisy (fitted to images, nudged by hand). The model: every face of a part
-//! a variation keeps is displaced from where the intended design puts it by independent
-//! Gaussian noise of one standard deviation `σ`, in world units, the unit pictures and hands
-//! err in, whatever numbers the author typed to place the face. Projecting a variation onto
-//! a relation in the metric that counts face displacements (`project::Faces::noise_metric`)
-//! moves it by the least displacement that makes the relation hold; if the relation is
-//! intent, that squared displacement over `σ²` is χ²-distributed with one degree of freedom
-//! per row and per variation that has both parts.
+//! Variations are noisy (fitted to images, nudged by hand). The model lives where the
+//! variation was made, in world units: a typed variation's every number is off from what the
+//! intended design has by independent Gaussian noise that moves the face it moves most by
+//! one standard deviation `σ` (a number sizing twenty boards is one noisy number, so their
+//! faces move together: `project::Faces::number_metric`); a variation fitted to pictures,
+//! which see faces, has every face it shows displaced by independent noise of `σ`, weighed
+//! by how well its pictures show it (`project::Faces::face_metric`, `precision`).
+//! Projecting a variation onto a relation in its metric moves it by the least displacement
+//! that makes the relation hold; if the relation is intent, that squared displacement over
+//! `σ²` is χ²-distributed with one degree of freedom per row and per variation that has
+//! both parts.
 //!
 //! One decision rule follows, the same for every kind of object: a relation is intent when
 //! that is more likely than not, weighing the likelihood of its residuals under the noise
@@ -15,7 +18,9 @@
 //! unknown scale: [`NoiseModel::log_likelihood_ratio`]), with the prior odds of its class
 //! (`classes`). A χ² statistic in normal units ([`NoiseModel::z`]) is reported beside it.
 //!
-//! `σ` is estimated from the variations themselves: the pooled variance of the relations
+//! `σ` is estimated from the variations themselves, over the relations that can tell it
+//! (`intent::informative`: their residuals cancel most of their numbers' changes; where
+//! none does, `σ` stays at the floor and [`NoiseModel::told`] says so): the pooled variance of the relations
 //! whose statistic chance reaches in all but [`FALSE_REJECTION`] of intent ones (a
 //! one-sided test at [`INTENT_Z`]), iterated from a low start until that set stops changing.
 //! It never falls below `floor` (the model's float tolerance), so with exact variations
@@ -59,6 +64,10 @@ pub struct NoiseModel {
     pub pooled: usize,
     /// The statistic above which a relation is rejected.
     pub critical_z: f64,
+    /// Whether any relation could tell the noise (see `intent::informative`). When none
+    /// does, `sigma` sits at the floor as for exact variations: every relation the
+    /// variations move counts as changed.
+    pub told: bool,
 }
 
 /// The Wilson–Hilferty normal form of a χ² statistic `x` with `dof` degrees of freedom:
@@ -92,7 +101,9 @@ impl NoiseModel {
 
     /// The noise in words: `σ = 0.120 world units`, or that the variations are exact.
     pub fn describe(&self) -> String {
-        if self.exact() {
+        if !self.told {
+            "no relation tells the variations' noise from a change of design".to_string()
+        } else if self.exact() {
             "exact variations, no noise".to_string()
         } else {
             format!("σ = {} world units", figures(self.sigma))
@@ -144,6 +155,7 @@ impl NoiseModel {
             floor,
             pooled: 0,
             critical_z: INTENT_Z,
+            told: !seen.is_empty(),
         };
         if seen.is_empty() {
             return model;
@@ -306,6 +318,7 @@ mod tests {
             floor: 1e-6,
             pooled: 0,
             critical_z: INTENT_Z,
+            told: true,
         };
         let at = |rms: f64| {
             m.log_likelihood_ratio(

@@ -61,6 +61,9 @@ pub struct Metric {
     /// Per entry of `Faces::parts`, the squared area of its faces normal to each axis
     /// (0 for parts the variation does without).
     weights: Vec<[f64; 3]>,
+    /// Per slot, a weight of its own (`H += w eₛeₛᵀ`): the number metric's (empty for a
+    /// metric of faces alone).
+    slots: Vec<f64>,
     /// The ridge added to every slot: keeps slots no face depends on where they are.
     ridge: f64,
 }
@@ -147,16 +150,40 @@ impl Faces {
         let scale = diagonal.iter().fold(0.0f64, |m, &v| m.max(v)).max(1.0);
         Metric {
             weights,
+            slots: Vec::new(),
             ridge: PROJECTION_RIDGE * scale,
         }
     }
 
-    /// The noise model's metric (`noise`): every face of a part the variation keeps weighs 1,
-    /// so the metric's distance is the faces' displacement in world units, the unit the
-    /// variations' noise lives in, however the author's numbers drive the faces. A fitted
-    /// variation's `precision` (per entry of the parts, per axis, in `[0, 1]`) scales that
-    /// down where its pictures determine the faces less well (`precision`).
-    pub fn noise_metric(&self, skip: &[usize], precision: Option<&[[f64; 3]]>) -> Metric {
+    /// The noise model's metric for a variation whose numbers were typed (`noise`): every
+    /// number the variation has is off by noise that moves the face it moves most by `σ`
+    /// world units, so a number weighs its leverage squared (the largest coefficient it has
+    /// in a face of a part the variation keeps). The metric's distance is then the numbers'
+    /// displacement in world units, however many faces a number drives.
+    pub fn number_metric(&self, skip: &[usize]) -> Metric {
+        let mut leverage = vec![0.0f64; self.slots];
+        for pf in self.parts.iter().filter(|pf| !skip.contains(&pf.part)) {
+            for (_, f) in pf.forms() {
+                for &(s, c) in &f.terms {
+                    leverage[s as usize] = leverage[s as usize].max(c.abs());
+                }
+            }
+        }
+        let slots: Vec<f64> = leverage.iter().map(|l| l * l).collect();
+        let scale = slots.iter().fold(0.0f64, |m, &v| m.max(v)).max(1.0);
+        Metric {
+            weights: vec![[0.0; 3]; self.parts.len()],
+            slots,
+            ridge: PROJECTION_RIDGE * scale,
+        }
+    }
+
+    /// The noise model's metric for a variation fitted to pictures (`noise`), which see
+    /// faces: every face of a part the variation keeps weighs 1, so the metric's distance
+    /// is the faces' displacement in world units. The variation's `precision` (per entry of
+    /// the parts, per axis, in `[0, 1]`) scales that down where its pictures determine the
+    /// faces less well (`precision`).
+    pub fn face_metric(&self, skip: &[usize], precision: &[[f64; 3]]) -> Metric {
         let weights: Vec<[f64; 3]> = self
             .parts
             .iter()
@@ -165,7 +192,7 @@ impl Faces {
                 if skip.contains(&pf.part) {
                     [0.0; 3]
                 } else {
-                    precision.map_or([1.0; 3], |p| p[k])
+                    precision[k]
                 }
             })
             .collect();
@@ -180,6 +207,7 @@ impl Faces {
         let scale = diagonal.iter().fold(0.0f64, |m, &v| m.max(v)).max(1.0);
         Metric {
             weights,
+            slots: Vec::new(),
             ridge: PROJECTION_RIDGE * scale,
         }
     }
@@ -324,8 +352,9 @@ impl Block {
                 );
                 outer(w2, &g);
             }
-            for row in &null {
-                outer(metric.ridge, row);
+            for (row, &s) in null.iter().zip(&slots) {
+                let own = metric.slots.get(s as usize).copied().unwrap_or(0.0);
+                outer(metric.ridge + own, row);
             }
             positive_definite_factor(m)
         });
@@ -608,4 +637,53 @@ pub fn project_onto(faces: &Faces, x: &[f64], rows: &[&Affine], skip: &[usize]) 
         }
     }
     p
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// What projecting `x` onto `row` costs in `metric`.
+    fn cost(faces: &Faces, metric: Metric, x: &[f64], row: &Affine) -> f64 {
+        let basis = RowBasis::default();
+        let mut blocks = SlotBlocks::of(faces);
+        let members = blocks.members();
+        Projector::new(metric)
+            .shift_and_cost(faces, &basis, &mut blocks, &members, x, &[row])
+            .1
+    }
+
+    /// One number sizes five boards, another one board; a variation moves the first by one
+    /// unit, breaking "the two are equal" by one unit.
+    #[test]
+    fn a_typed_number_weighs_its_leverage_not_the_faces_it_drives() {
+        let m = crate::front::test_model(
+            "w = 30;\nv = 30;\n\
+             for (i = [0:4]) translate([i * 40, 0, 0]) cube([w, 10, 10]);\n\
+             translate([0, 50, 0]) cube([v, 10, 10]);\n",
+        );
+        let faces = Faces::of(&m);
+        let slot = |name: &str| {
+            m.slots
+                .iter()
+                .position(|s| s.name == name)
+                .unwrap_or_else(|| panic!("no slot {name}")) as SlotId
+        };
+        let (w, v) = (slot("w"), slot("v"));
+        let row = Affine {
+            constant: 0.0,
+            terms: vec![(w, 1.0), (v, -1.0)],
+        };
+        let mut x = m.slot_values();
+        x[w as usize] += 1.0;
+        // Typed: two numbers each off by noise of σ, so the residual's variance is 2σ² and
+        // its cost 1/2, however many boards `w` sizes (in the faces' metric, `w` would count
+        // once per board).
+        let typed = cost(&faces, faces.number_metric(&[]), &x, &row);
+        assert!((typed - 0.5).abs() < 1e-6, "{typed}");
+        // A variation without the five boards leaves `w` no leverage: moving it costs nothing.
+        let without: Vec<usize> = (0..5).collect();
+        let free = cost(&faces, faces.number_metric(&without), &x, &row);
+        assert!(free < 1e-6, "{free}");
+    }
 }

@@ -138,7 +138,10 @@ fn sliders(h: &mut String, p: &PageInputs) {
 
 /// What the report says of the variations' noise.
 fn noise_line(n: &NoiseModel) -> String {
-    if n.exact() {
+    if !n.told {
+        " No relation the variations move cancels their changes, so nothing tells their noise from a change of design: a relation any variation breaks is left out."
+            .to_string()
+    } else if n.exact() {
         " The variations are exact (no noise): a relation any variation breaks is left out."
             .to_string()
     } else {

@@ -62,5 +62,6 @@ pub fn paper_method(model: &Model, raw: &[Vec<f64>]) -> Output {
             .collect(),
         presets: variation_free.into_iter().map(Some).collect(),
         seconds: start.elapsed().as_secs_f64(),
+        sigma: None,
     }
 }

@@ -47,6 +47,8 @@ pub struct FamilyResult {
     pub seed: u64,
     pub style: Style,
     pub parts: usize,
+    /// The noise added to the training variations (world units).
+    pub sigma: f64,
     pub ours: Score,
     pub paper: Score,
 }
@@ -236,6 +238,7 @@ pub fn output_of(model: &Model, compiled: &Compiled, seconds: f64) -> Output {
         toggles,
         presets,
         seconds,
+        sigma: report.noise.map(|n| n.sigma),
     }
 }
 
@@ -275,6 +278,7 @@ pub fn evaluate_family(seed: u64, setup: Setup, paper: bool) -> Result<FamilyRes
         seed,
         style: case.style,
         parts: case.model.parts.len(),
+        sigma: setup.noise * case.family.size,
         ours: score(&truth, &ours, seed),
         paper,
     })

@@ -38,6 +38,8 @@ pub struct Output {
     /// Each preset's free values, in slider order (`None`: it does not name every slider).
     pub presets: Vec<Option<Vec<f64>>>,
     pub seconds: f64,
+    /// The noise the method estimated (world units), if it estimates one.
+    pub sigma: Option<f64>,
 }
 
 /// What the generator knows about a family, read on its loaded model.
@@ -69,6 +71,8 @@ pub struct Score {
     /// Why the presets are not valid, if they are not.
     pub bad_preset: Option<String>,
     pub seconds: f64,
+    /// The noise the method estimated (world units), if it estimates one.
+    pub sigma: Option<f64>,
 }
 
 impl Score {
@@ -162,6 +166,7 @@ pub fn score(truth: &Truth, out: &Output, seed: u64) -> Score {
         }),
         bad_preset: bad_preset(model, out),
         seconds: out.seconds,
+        sigma: out.sigma,
         ..coherence(truth, out, seed)
     }
 }
