@@ -166,11 +166,11 @@ pub const NOISE_FALSE_REJECTION: f64 = 1e-3;
 pub const NOISE_MAX_SHARE: f64 = 0.05;
 
 /// The most of its numbers' own changes a relation may keep as residual and still show
-/// the noise (`analysis::intent`): an intent relation's residual is the noise while its
-/// numbers move by the design's changes, so it cancels most of them; a broken one cancels
-/// nothing in particular (for two independent changes the residual's square is, on
-/// average, as large as their squares' sum). A quarter of the squares is a residual at
-/// most half the numbers' typical change.
+/// that the variations have an intent relation to tell their noise by (`analysis::intent`):
+/// an intent relation's residual is the noise while its numbers move by the design's
+/// changes, so it cancels most of them; a broken one cancels nothing in particular (for two
+/// independent changes the residual's square is, on average, as large as their squares'
+/// sum). A quarter of the squares is a residual at most half the numbers' typical change.
 pub const NOISE_CANCELLATION_SHARE: f64 = 0.25;
 
 /// Volume lost by removing a part, as a fraction of the part's own volume in the input,

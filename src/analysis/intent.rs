@@ -132,10 +132,12 @@ struct Scores {
 
 /// The evidence that can tell the noise. A relation whose slots every variation leaves at
 /// the input's values (numbers no one changed, noised or not) is kept exactly whatever `σ`
-/// is, and pooling it would pull the estimate to the floor. A relation whose residual does
-/// not cancel most of its numbers' own changes (`NOISE_CANCELLATION_SHARE`) shows nothing
-/// that tells noise from a change of design: pooled, broken relations of a model whose
-/// numbers all vary apart would pass for the noise.
+/// is, and pooling it would pull the estimate to the floor. And the variations tell their
+/// noise only if some relation they move cancels most of its numbers' own changes
+/// (`NOISE_CANCELLATION_SHARE`): that is what an intent relation under noise looks like.
+/// Where none does (every number of the model varies apart), every relation they move is
+/// a change of design, and pooling them would make those changes pass for the noise:
+/// nothing is pooled, and `σ` stays at the floor.
 fn informative(
     cx: &Context<'_>,
     input: &[f64],
@@ -148,14 +150,20 @@ fn informative(
     let moved: Vec<bool> = (0..first.values.len())
         .map(|s| samples.iter().any(|v| v.values[s] != first.values[s]))
         .collect();
-    (0..cx.candidates.list.len())
+    let moving: Vec<usize> = (0..cx.candidates.list.len())
         .filter(|&c| {
-            let rows = rows_of(cx.candidates, c);
-            rows.iter().any(|r| r.slots().any(|s| moved[s as usize]))
-                && cancels(&rows, input, samples, &cx.seen[c])
+            rows_of(cx.candidates, c)
+                .iter()
+                .any(|r| r.slots().any(|s| moved[s as usize]))
         })
-        .map(|c| evidence[c])
-        .collect()
+        .collect();
+    let told = moving
+        .iter()
+        .any(|&c| cancels(&rows_of(cx.candidates, c), input, samples, &cx.seen[c]));
+    if !told {
+        return Vec::new();
+    }
+    moving.into_iter().map(|c| evidence[c]).collect()
 }
 
 /// Whether `rows`' residuals over the variations that keep their parts (`seen`) cancel most

@@ -18,9 +18,10 @@
 //! unknown scale: [`NoiseModel::log_likelihood_ratio`]), with the prior odds of its class
 //! (`classes`). A χ² statistic in normal units ([`NoiseModel::z`]) is reported beside it.
 //!
-//! `σ` is estimated from the variations themselves, over the relations that can tell it
-//! (`intent::informative`: their residuals cancel most of their numbers' changes; where
-//! none does, `σ` stays at the floor and [`NoiseModel::told`] says so): the pooled variance of the relations
+//! `σ` is estimated from the variations themselves, over the relations they move, when
+//! they can tell it (`intent::informative`: some relation's residuals cancel most of its
+//! numbers' changes; where none does, `σ` stays at the floor and [`NoiseModel::told`]
+//! says so): the pooled variance of the relations
 //! whose statistic chance reaches in all but [`FALSE_REJECTION`] of intent ones (a
 //! one-sided test at [`INTENT_Z`]), iterated from a low start until that set stops changing.
 //! It never falls below `floor` (the model's float tolerance), so with exact variations
