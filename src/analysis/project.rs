@@ -147,11 +147,10 @@ impl Faces {
                 w
             })
             .collect();
-        let scale = diagonal.iter().fold(0.0f64, |m, &v| m.max(v)).max(1.0);
         Metric {
             weights,
             slots: Vec::new(),
-            ridge: PROJECTION_RIDGE * scale,
+            ridge: ridge(&diagonal),
         }
     }
 
@@ -170,11 +169,10 @@ impl Faces {
             }
         }
         let slots: Vec<f64> = leverage.iter().map(|l| l * l).collect();
-        let scale = slots.iter().fold(0.0f64, |m, &v| m.max(v)).max(1.0);
         Metric {
             weights: vec![[0.0; 3]; self.parts.len()],
+            ridge: ridge(&slots),
             slots,
-            ridge: PROJECTION_RIDGE * scale,
         }
     }
 
@@ -204,11 +202,10 @@ impl Faces {
                 }
             }
         }
-        let scale = diagonal.iter().fold(0.0f64, |m, &v| m.max(v)).max(1.0);
         Metric {
             weights,
             slots: Vec::new(),
-            ridge: PROJECTION_RIDGE * scale,
+            ridge: ridge(&diagonal),
         }
     }
 
@@ -240,6 +237,12 @@ impl Faces {
                 .filter(|(w2, _)| *w2 != 0.0)
         })
     }
+}
+
+/// The metric's ridge for a diagonal of `H`: [`PROJECTION_RIDGE`] of its largest entry (of
+/// 1 when every entry is smaller).
+fn ridge(diagonal: &[f64]) -> f64 {
+    PROJECTION_RIDGE * diagonal.iter().fold(0.0f64, |m, &v| m.max(v)).max(1.0)
 }
 
 impl SlotBlocks {
