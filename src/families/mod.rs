@@ -52,6 +52,10 @@ pub struct Family {
 /// Held-out variations per family.
 pub const HELD_OUT: usize = 2;
 
+/// Further exact draws, beyond the input, training and held-out ones, that decide which
+/// contacts the family's variations share (a contact four draws keep by chance is not one).
+pub const CONTACT_DRAWS: usize = 12;
+
 /// Probability that a variation drops each optional part.
 pub const DROP_CHANCE: f64 = 0.3;
 
@@ -111,6 +115,20 @@ impl Family {
             });
         }
         None
+    }
+
+    /// `CONTACT_DRAWS` more exact draws from the intent subspace, no part dropped: with
+    /// the others, the family's variations a contact must hold in to be the family's.
+    pub fn contact_draws(&self) -> Vec<Draw> {
+        let floor = 0.002 * self.size;
+        let mut rng = Rng::fork(self.seed, 3000);
+        (0..CONTACT_DRAWS)
+            .filter_map(|_| draw(&self.params, &self.positive, floor, 1.0, &mut rng))
+            .map(|theta| Draw {
+                theta,
+                dropped: Vec::new(),
+            })
+            .collect()
     }
 
     /// The intent dimension `d`.

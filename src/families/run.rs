@@ -39,6 +39,8 @@ pub struct Case {
     pub training_exact: Vec<Variation>,
     pub training: Vec<Variation>,
     pub held_out: Vec<Variation>,
+    /// [`Family::contact_draws`], exact: only the truth's contacts read them.
+    pub contact_draws: Vec<Variation>,
 }
 
 /// A family's scores under both methods.
@@ -127,6 +129,11 @@ impl Case {
             .iter()
             .map(|d| load(d, 0.0, &mut rng))
             .collect::<Result<Vec<_>, _>>()?;
+        let contact_draws = family
+            .contact_draws()
+            .iter()
+            .map(|d| load(d, 0.0, &mut rng))
+            .collect::<Result<Vec<_>, _>>()?;
         Ok(Case {
             family,
             style,
@@ -136,6 +143,7 @@ impl Case {
             training_exact,
             training,
             held_out,
+            contact_draws,
         })
     }
 
@@ -150,7 +158,12 @@ impl Case {
         dropped.sort_unstable();
         dropped.dedup();
         let mut settings = vec![self.model.slot_values()];
-        settings.extend(self.training_exact.iter().map(|v| v.values.clone()));
+        let exact = [&self.training_exact, &self.held_out, &self.contact_draws];
+        settings.extend(
+            exact
+                .iter()
+                .flat_map(|vs| vs.iter().map(|v| v.values.clone())),
+        );
         Truth {
             model: &self.model,
             d: self.family.dimension(),

@@ -4,8 +4,8 @@
 //!
 //! A method's output is an [`Output`] (kept rows, the solve, slider ranges, toggles,
 //! presets as free values); [`Truth`] is what the generator knows, read back through the
-//! loaded model: held-out slot values, the contacts the input and every exact training
-//! variation share, the parts some training variation drops. Contacts are world boxes that
+//! loaded model: held-out slot values, the contacts the family's variations share (the
+//! input and every exact draw: training, held-out and a dozen more), the parts some training variation drops. Contacts are world boxes that
 //! touch or overlap within the model's tolerance.
 
 use crate::analysis::anchors::Anchors;
@@ -50,7 +50,8 @@ pub struct Truth<'m> {
     pub held_out: Vec<Vec<f64>>,
     /// Parts some training variation drops.
     pub dropped: Vec<usize>,
-    /// Part pairs in contact at the input and in every exact training variation.
+    /// Part pairs in contact at the input and in every exact variation of the family drawn
+    /// (training, held-out and [`super::Family::contact_draws`]): the family's contacts.
     pub contacts: Vec<(usize, usize)>,
 }
 
