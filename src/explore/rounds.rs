@@ -309,6 +309,8 @@ impl<'a> Explorer<'a> {
         guides: &[Rgb],
         round: usize,
     ) -> Result<(Vec<f64>, f64, Option<Information>), ExploreError> {
+        // Starts where the last round ended; the regulariser keeps pulling towards the
+        // model's own numbers (`anchor`), as the paper's λ‖x − x₀‖² does.
         let mut problem = self.problem.clone();
         problem.x0 = x.to_vec();
         let targets: Vec<Target> = guides.iter().map(Target::from_rgb).collect();

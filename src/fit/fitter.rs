@@ -340,7 +340,8 @@ impl<'a> Fitter<'a> {
             albedo: Vec::new(),
         };
         let start_loss = self.judge(backend, &problem.x0, &mut look).per_view;
-        let mut best = Best::new(problem.x0.clone(), start_loss.iter().sum());
+        let start = start_loss.iter().sum::<f64>() + self.reg(&problem.x0).0;
+        let mut best = Best::new(problem.x0.clone(), start);
         let mut x = problem.x0.clone();
         if self.opts.proportions {
             x = self.proportions(backend, x, &look);
@@ -516,13 +517,13 @@ impl<'a> Fitter<'a> {
         look.albedo = fitted.albedo;
     }
 
-    /// The regulariser `λ‖(x − x₀)/size‖²` and its gradient.
+    /// The regulariser `λ‖(x − anchor)/size‖²` and its gradient.
     fn reg(&self, x: &[f64]) -> (f64, Vec<f64>) {
         let problem = &*self.problem;
         let mut v = 0.0;
         let mut g = vec![0.0; x.len()];
         for i in 0..x.len() {
-            let r = (x[i] - problem.x0[i]) / problem.scale;
+            let r = (x[i] - problem.anchor[i]) / problem.scale;
             v += r * r;
             g[i] = 2.0 * self.opts.lambda * r / problem.scale;
         }

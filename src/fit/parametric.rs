@@ -3,7 +3,7 @@
 //! and carry the renderer's gradient per part parameter back to the slots.
 //!
 //! Invariants: `forms`, `kinds`, `base` and `faces` have one entry per part of the model;
-//! every form reads slots below `x0.len()`; `scale` is positive.
+//! every form reads slots below `x0.len()`; `anchor` has `x0`'s length; `scale` is positive.
 
 use crate::ir::{Affine, Model};
 use crate::render::camera::Camera;
@@ -17,7 +17,11 @@ pub struct Parametric {
     pub forms: Vec<[Option<Affine>; NTHETA]>,
     pub base: Vec<crate::ir::Part>,
     pub csg: crate::ir::CsgNode,
+    /// Where the fit starts.
     pub x0: Vec<f64>,
+    /// What the regulariser pulls towards: the model's own numbers, also when a fit starts
+    /// elsewhere (each round of `explore` starts where the last one ended).
+    pub anchor: Vec<f64>,
     /// The model's size (longest side of its bounding box).
     pub scale: f64,
     /// Fixed points per circle of each curved part's silhouette (see [`Parametric::fix_rings`]).
@@ -43,6 +47,7 @@ impl Parametric {
             base: model.parts.clone(),
             csg: model.csg.clone(),
             x0: model.slot_values(),
+            anchor: model.slot_values(),
             scale: model.size().max(FIT_SIZE_FLOOR),
             rings: Vec::new(),
             faces: {
