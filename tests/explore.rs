@@ -3,6 +3,7 @@
 //! failing server is set aside, and bad answers stop the run cleanly with the rounds done
 //! kept.
 
+mod common;
 #[path = "explore_support/server.rs"]
 mod server;
 
@@ -171,15 +172,20 @@ fn the_language_model_s_kinds_are_printed_and_picked() {
         .collect();
     assert_eq!(names, ["bar_stool", "bench"]);
     assert!(dir.join("run/bar_stool.scad").is_file());
-    // The gallery page: every image it lists is there.
+    // The gallery page, opened in a browser: no console error, every image it lists shown.
     let page = std::fs::read_to_string(dir.join("pages/index.html")).unwrap();
     let images = image_links(&page);
     // Per prompt: one round of two views (guidance, render) and four final views; presets.
     assert_eq!(images.len(), 2 * (2 * 2 + 4) + 1, "{page}");
-    for src in &images {
-        assert!(dir.join("pages").join(src).is_file(), "{src} is missing");
-    }
     assert!(dir.join("pages/index_presets.png").is_file());
+    let shown = common::browser::open(&dir.join("pages/index.html"));
+    assert_eq!(shown.images, images.len(), "{shown:?}");
+    assert!(shown.clean(), "{shown:?}");
+    // The probe sees a missing picture.
+    std::fs::remove_file(dir.join("pages").join(&images[0])).unwrap();
+    let missing = common::browser::open(&dir.join("pages/index.html"));
+    assert_eq!(missing.broken.len(), 1, "{missing:?}");
+    assert_eq!(missing.errors.len(), 1, "{missing:?}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

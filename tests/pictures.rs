@@ -262,67 +262,6 @@ fn the_cutoff_of_exact_variations_says_so_instead_of_a_zero_sigma() {
     assert!(!page.contains("σ = 0.000"));
 }
 
-/// Debian's Chromium, headless, with the flags this closed network needs and a fresh
-/// profile in `dir`.
-fn chromium(dir: &Path) -> Command {
-    let mut c = Command::new("chromium");
-    c.args([
-        "--headless",
-        "--no-sandbox",
-        "--disable-gpu",
-        "--disable-quic",
-        "--no-first-run",
-        "--disable-background-networking",
-        "--disable-component-update",
-        "--disable-sync",
-        "--virtual-time-budget=10000",
-    ])
-    .arg(format!("--user-data-dir={}", dir.join("profile").display()));
-    c
-}
-
-/// Opens `page` in Chromium: its console lines, and `images=N loaded=M svg=K` as a frame
-/// of a harness page read it.
-fn open_in_chromium(dir: &Path, page: &str) -> (Vec<String>, String) {
-    let file = |name: &str| format!("file://{}", dir.join(name).display());
-    let _ = std::fs::remove_dir_all(dir.join("profile"));
-    let run = chromium(dir)
-        .args(["--enable-logging=stderr", "--v=0", "--dump-dom"])
-        .arg(file(page))
-        .output()
-        .expect("Debian's `chromium` must be installed (bash scripts/setup)");
-    let console = String::from_utf8_lossy(&run.stderr)
-        .lines()
-        .filter(|l| l.contains(":CONSOLE"))
-        .map(str::to_string)
-        .collect();
-    let harness = format!(
-        "<!DOCTYPE html><html><body><pre id=\"out\">pending</pre><iframe id=\"f\" src=\"{page}\" style=\"width:1200px;height:900px\"></iframe><script>
-window.addEventListener('load', () => {{
-  const d = document.getElementById('f').contentDocument, imgs = [...d.images];
-  const ok = imgs.filter(i => i.complete && i.naturalWidth > 0).length;
-  document.getElementById('out').textContent =
-    'images=' + imgs.length + ' loaded=' + ok + ' svg=' + d.querySelectorAll('svg').length;
-}});
-</script></body></html>"
-    );
-    std::fs::write(dir.join("harness.html"), harness).expect("write the harness");
-    let _ = std::fs::remove_dir_all(dir.join("profile"));
-    let run = chromium(dir)
-        .args(["--allow-file-access-from-files", "--dump-dom"])
-        .arg(file("harness.html"))
-        .output()
-        .expect("chromium runs");
-    let dom = String::from_utf8_lossy(&run.stdout);
-    let seen = dom
-        .split("<pre id=\"out\">")
-        .nth(1)
-        .and_then(|s| s.split('<').next())
-        .unwrap_or("")
-        .to_string();
-    (console, seen)
-}
-
 #[test]
 fn report_page_opens_in_chromium_without_errors_and_every_image_shows() {
     let dir: PathBuf = common::tempfile(Path::new("page"), "d");
@@ -335,14 +274,21 @@ fn report_page_opens_in_chromium_without_errors_and_every_image_shows() {
         "<!DOCTYPE html><html><body><img src=\"missing.png\"><script>console.error('boom')</script></body></html>",
     )
     .expect("write the broken page");
-    let (console, seen) = open_in_chromium(&dir, "bad.html");
-    assert!(!console.is_empty(), "a console error goes unseen");
-    assert_eq!(seen, "images=1 loaded=0 svg=0");
-    let (console, seen) = open_in_chromium(&dir, "r.html");
-    assert!(console.is_empty(), "console: {console:?}");
+    let bad = common::browser::open(&dir.join("bad.html"));
+    assert!(
+        !bad.console.is_empty(),
+        "a console error goes unseen: {bad:?}"
+    );
+    assert_eq!(
+        (bad.images, bad.broken.len(), bad.svgs),
+        (1, 1, 0),
+        "{bad:?}"
+    );
+    let shown = common::browser::open(&dir.join("r.html"));
+    assert!(shown.clean(), "{shown:?}");
     let images = page.matches("<img ").count();
     assert!(images >= 2, "views and gallery: {images} images");
-    assert_eq!(seen, format!("images={images} loaded={images} svg=1"));
+    assert_eq!((shown.images, shown.svgs), (images, 1), "{shown:?}");
     let _ = std::fs::remove_dir_all(&dir);
 }
 

@@ -6,6 +6,8 @@
 
 #![allow(dead_code)]
 
+pub mod browser;
+
 use reparamc::front::ast::{Expr, ExprKind, InstanceKind, Stmt, StmtKind, UnaryOp, VecElem};
 use reparamc::front::parse::parse_program;
 use reparamc::ir::{Num, Part, Primitive, Transform};
