@@ -26,7 +26,7 @@ fn emitted(model: &Path, variations: &[PathBuf]) -> String {
     let options = Options {
         all_constraints: false,
         presets_name: Some(format!("{stem}_param.json")),
-        distortion_curve: false,
+        measure: false,
     };
     reparameterize(&sources, &loaded, &evaluated.model, &vars, &options).scad
 }

@@ -47,7 +47,7 @@ fn run(model: &Path, variations: &[PathBuf]) -> Run {
     let options = Options {
         all_constraints: false,
         presets_name: Some(format!("{stem}_param.json")),
-        distortion_curve: true,
+        measure: true,
     };
     let compiled = reparameterize(&sources, &loaded, &evaluated.model, &vars, &options);
     let dir = tempfile(model, "out");

@@ -170,7 +170,7 @@ fn compile(name: &str, text: &str) -> (PathBuf, Compiled) {
     let options = Options {
         all_constraints: false,
         presets_name: None,
-        distortion_curve: false,
+        measure: false,
     };
     let compiled = reparameterize(&sources, &loaded, &evaluated.model, &[], &options);
     let out = dir.join(format!("{name}_param.scad"));

@@ -50,6 +50,11 @@ pub trait Similarity: Sync {
     /// relative to the part's own size in the input: 0 when nothing changes (the part is
     /// hidden inside others, or shrunk to nothing), about 1 when all of it shows.
     fn removal_loss(&self, reference: &Self::Reference, part: usize) -> f64;
+    /// A lower bound on [`Similarity::removal_loss`], cheap (0: no bound known): a part
+    /// it already shows present needs no exact loss.
+    fn removal_loss_lower_bound(&self, _reference: &Self::Reference, _part: usize) -> f64 {
+        0.0
+    }
 }
 
 /// The similarity of `current` to the variation `sample` it was moved from, preparing the

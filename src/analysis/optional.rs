@@ -61,6 +61,10 @@ fn negative_sized(part: &Part, x: &[f64], eps: f64) -> bool {
 
 /// For each variation, the parts it does without, for variations whose faces carry noise
 /// of `sigma` (world units; 0 for exact variations).
+///
+/// A part whose removal the similarity's cheap lower bound already shows too visible is
+/// present without an exact removal integral; the exact loss (and what the input shows of
+/// the part) is integrated only for the others. The answer is the same either way.
 pub fn optional_parts<S: Similarity>(
     model: &Model,
     variations: &[Vec<f64>],
@@ -70,41 +74,51 @@ pub fn optional_parts<S: Similarity>(
     let x0 = model.slot_values();
     let input = sim.reference(&x0, &[]);
     let parts = model.parts.len();
-    let shown: Vec<f64> = (0..parts).map(|p| sim.removal_loss(&input, p)).collect();
+    let mut shown: Vec<Option<f64>> = vec![None; parts];
     let at_input: Vec<(f64, f64)> = model.parts.iter().map(|p| box_at(p, &x0)).collect();
     let eps = crate::tolerance::Tolerance::for_size(model.size()).epsilon;
-    variations
-        .iter()
-        .map(|v| {
-            let whole = sim.reference(v, &[]);
-            (0..parts)
-                .filter(|&p| shown[p] >= OPTIONAL_THRESHOLD)
-                .filter(|&p| {
-                    let loss = sim.removal_loss(&whole, p);
-                    if sigma <= 0.0 {
-                        // Exact variations: a part is left out by a zero or hidden inside
-                        // others, not by a size that only happens to draw nothing (a
-                        // negative radius is a number the noise moved past zero, and the
-                        // part is still meant).
-                        return loss < OPTIONAL_THRESHOLD
-                            && !negative_sized(&model.parts[p], v, eps);
-                    }
-                    if loss < OPTIONAL_THRESHOLD {
-                        return true;
-                    }
-                    // The visible thickness in `v`, relative to the input's thickness.
-                    let (thickness, area) = at_input[p];
-                    let (_, area_v) = box_at(&model.parts[p], v);
-                    let relative = if area_v > 0.0 {
-                        loss * area / area_v
-                    } else {
-                        loss
-                    };
-                    relative < 0.5 * shown[p] && relative * thickness <= sigma
-                })
-                .collect()
-        })
-        .collect()
+    let mut out = Vec::with_capacity(variations.len());
+    for v in variations {
+        let whole = sim.reference(v, &[]);
+        let mut off = Vec::new();
+        for p in 0..parts {
+            // The visible thickness in `v` of a loss, relative to the input's thickness.
+            let (thickness, area) = at_input[p];
+            let (_, area_v) = box_at(&model.parts[p], v);
+            let relative = |loss: f64| {
+                if area_v > 0.0 {
+                    loss * area / area_v
+                } else {
+                    loss
+                }
+            };
+            let bound = sim.removal_loss_lower_bound(&whole, p);
+            let surely_present = bound >= OPTIONAL_THRESHOLD
+                && (sigma <= 0.0 || relative(bound) * thickness > sigma);
+            if surely_present {
+                continue;
+            }
+            let shows = *shown[p].get_or_insert_with(|| sim.removal_loss(&input, p));
+            if shows < OPTIONAL_THRESHOLD {
+                continue;
+            }
+            let loss = sim.removal_loss(&whole, p);
+            let optional = if sigma <= 0.0 {
+                // Exact variations: a part is left out by a zero or hidden inside others,
+                // not by a size that only happens to draw nothing (a negative radius is a
+                // number the noise moved past zero, and the part is still meant).
+                loss < OPTIONAL_THRESHOLD && !negative_sized(&model.parts[p], v, eps)
+            } else {
+                loss < OPTIONAL_THRESHOLD
+                    || (relative(loss) < 0.5 * shows && relative(loss) * thickness <= sigma)
+            };
+            if optional {
+                off.push(p);
+            }
+        }
+        out.push(off);
+    }
+    out
 }
 
 /// The variations' slot values with every slot that shapes only parts a variation does

@@ -34,6 +34,18 @@ impl<'m> VolumeSimilarity<'m> {
         }
     }
 
+    /// A changed volume relative to `part`'s own volume in the input.
+    fn relative(&self, part: usize, changed: f64) -> f64 {
+        let own = self.part_volumes.get(part).copied().unwrap_or(0.0);
+        if changed <= 0.0 {
+            0.0
+        } else if own > 0.0 {
+            changed / own
+        } else {
+            f64::INFINITY
+        }
+    }
+
     /// The parts (outside `skip`) that depend on a `changed` slot, at `a`; `None` when one
     /// does not evaluate.
     fn edits(&self, a: &[f64], changed: &[u32], skip: &[usize]) -> Option<Vec<Edit>> {
@@ -103,14 +115,10 @@ impl Similarity for VolumeSimilarity<'_> {
     }
 
     fn removal_loss(&self, r: &VolumeReference, part: usize) -> f64 {
-        let changed = r.solid.changed_volume(&[(part, None)]);
-        let own = self.part_volumes.get(part).copied().unwrap_or(0.0);
-        if changed <= 0.0 {
-            0.0
-        } else if own > 0.0 {
-            changed / own
-        } else {
-            f64::INFINITY
-        }
+        self.relative(part, r.solid.changed_volume(&[(part, None)]))
+    }
+
+    fn removal_loss_lower_bound(&self, r: &VolumeReference, part: usize) -> f64 {
+        self.relative(part, r.solid.removal_lower_bound(part))
     }
 }

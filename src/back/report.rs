@@ -25,8 +25,10 @@ pub struct FreeVariableReport {
 pub struct VariationReport {
     pub name: String,
     pub optional_parts: Vec<String>,
-    /// IoU between the variation and its projection onto the kept constraints.
-    pub projection_iou: f64,
+    /// IoU between the variation and its projection onto the kept constraints (measured
+    /// only when the job was asked to measure it; `None` otherwise).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub projection_iou: Option<f64>,
 }
 
 /// One chosen relation and the evidence for it.

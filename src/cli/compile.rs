@@ -173,7 +173,7 @@ fn options_of(
                         .map(|n| n.to_string_lossy().into_owned())
                 })
                 .flatten(),
-            distortion_curve: args.report.is_some(),
+            measure: args.report.is_some(),
         },
         plot: args.plot.as_deref().map(PlotFormat::of_path),
         gallery: args.gallery.is_some(),

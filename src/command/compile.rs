@@ -49,9 +49,11 @@ pub struct Options {
     pub all_constraints: bool,
     /// The file name the parameter sets will have (for the comment that points to them).
     pub presets_name: Option<String>,
-    /// Measure the distortion curve (1 − mean IoU after each relation taken) for the report
-    /// and the plot; the decisions do not depend on it, and it takes most of the time.
-    pub distortion_curve: bool,
+    /// Measure the IoUs only the report and the plot show: the distortion curve (1 − mean
+    /// IoU after each relation taken) and each variation's IoU with its projection. The
+    /// decisions do not depend on them, and on models of many curved parts they take
+    /// nearly all of the time (exact volumes of solids that differ everywhere).
+    pub measure: bool,
 }
 
 /// What the `compile` command is asked: the files, and what to make besides the model.
@@ -139,7 +141,7 @@ pub fn compile(options: &CompileOptions, sources: &mut SourceMap) -> DResult<Com
             )?);
         }
         let mut job = options.options.clone();
-        job.distortion_curve |= options.plot.is_some() || options.page;
+        job.measure |= options.plot.is_some() || options.page;
         tell("choosing the relations to keep");
         let model = &evaluated.model;
         let mut step = |done, total| options.progress.step(done, total);
@@ -211,7 +213,7 @@ pub fn reparameterize_telling(
     let choice = if variations.is_empty() {
         by_prior(model, &candidates, options.all_constraints)
     } else {
-        let curve = options.distortion_curve.then_some(&sim);
+        let curve = options.measure.then_some(&sim);
         by_discovery(model, &candidates, &faces, curve, &samples, step)
     };
     // Reparameterization: the kept rows solved with anchors; the variations projected.
@@ -270,7 +272,7 @@ pub fn reparameterize_telling(
         model,
         variations,
         candidates: &candidates,
-        sim: &sim,
+        sim: options.measure.then_some(&sim),
         optional: &optional,
         solution: &solution,
         projected: &projected,
@@ -409,7 +411,8 @@ struct Outcome<'a> {
     model: &'a Model,
     variations: &'a [Variation],
     candidates: &'a Candidates,
-    sim: &'a VolumeSimilarity<'a>,
+    /// The similarity to measure the projections' IoUs with (`None`: not measured).
+    sim: Option<&'a VolumeSimilarity<'a>>,
     optional: &'a [Vec<usize>],
     solution: &'a Solution,
     projected: &'a [Vec<f64>],
@@ -451,7 +454,7 @@ fn report(o: &Outcome, choice: Choice) -> Report {
         .map(|((v, p), skip)| VariationReport {
             name: v.name.clone(),
             optional_parts: skip.iter().map(|&i| model.parts[i].name.clone()).collect(),
-            projection_iou: o.sim.similarity(p, &v.values, skip),
+            projection_iou: o.sim.map(|sim| sim.similarity(p, &v.values, skip)),
         })
         .collect();
     let part_names = |parts: &[usize]| parts.iter().map(|&p| model.parts[p].name.clone()).collect();

@@ -47,6 +47,7 @@ mod breaks;
 mod crossings;
 mod csg;
 mod integrate;
+mod private;
 mod quad;
 mod shape;
 #[cfg(test)]
@@ -310,6 +311,29 @@ impl Prepared {
     pub fn changed_volume(&self, edits: &[Edit]) -> f64 {
         self.edited_overlap(edits)
             .map_or(0.0, |(local, _)| (local.union - local.inter).max(0.0))
+    }
+
+    /// A lower bound on [`Prepared::changed_volume`] of removing `part`, without
+    /// integrating: its inner box outside every other shape's bounds (module `private`).
+    pub fn removal_lower_bound(&self, part: usize) -> f64 {
+        let Some(Some(shape)) = self.shapes.get(part) else {
+            return 0.0;
+        };
+        let Some(inner) = private::inner_box(shape) else {
+            return 0.0;
+        };
+        if !private::alone_inside(&self.csg, part) {
+            return 0.0;
+        }
+        let others: Vec<Aabb> = (0..self.boxes.len())
+            .filter(|&j| j != part && self.shapes[j].is_some())
+            .map(|j| self.boxes[j].intersection(&inner))
+            .filter(|b| !b.is_empty())
+            .collect();
+        if others.len() > private::MAX_NEIGHBOURS {
+            return 0.0;
+        }
+        private::volume_outside(&inner, &others)
     }
 
     /// Applies `edits` to this solid, updating its volume by the same local integral.

@@ -141,7 +141,7 @@ fn inverse(m: &[[f64; 4]; 3]) -> Option<[[f64; 3]; 3]> {
 }
 
 /// True when each row and each column of `L` has exactly one non-negligible entry.
-fn is_signed_permutation(m: &[[f64; 4]; 3]) -> bool {
+pub(crate) fn is_signed_permutation(m: &[[f64; 4]; 3]) -> bool {
     let big = |i: usize, j: usize| {
         let norm = (0..3).map(|k| m[i][k].abs()).fold(0.0, f64::max);
         m[i][j].abs() > GEOM_NEGLIGIBLE_ENTRY * norm
