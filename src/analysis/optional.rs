@@ -63,8 +63,8 @@ fn negative_sized(part: &Part, x: &[f64], eps: f64) -> bool {
 /// of `sigma` (world units; 0 for exact variations).
 ///
 /// A part whose removal the similarity's cheap lower bound already shows too visible is
-/// present without an exact removal integral; the exact loss (and what the input shows of
-/// the part) is integrated only for the others. The answer is the same either way.
+/// present without an exact removal integral, and what the input shows of a part is
+/// integrated only when its bound cannot answer. The answer is the same either way.
 pub fn optional_parts<S: Similarity>(
     model: &Model,
     variations: &[Vec<f64>],
@@ -74,16 +74,23 @@ pub fn optional_parts<S: Similarity>(
     let x0 = model.slot_values();
     let input = sim.reference(&x0, &[]);
     let parts = model.parts.len();
+    // What removing each part changes at the input: a cheap lower bound first, the exact
+    // loss only when the bound cannot answer (both cached over the variations).
+    let mut bound_at_input: Vec<Option<f64>> = vec![None; parts];
     let mut shown: Vec<Option<f64>> = vec![None; parts];
+    let mut shows = |p: usize, past: &dyn Fn(f64) -> bool| -> bool {
+        let bound =
+            *bound_at_input[p].get_or_insert_with(|| sim.removal_loss_lower_bound(&input, p));
+        past(bound) || past(*shown[p].get_or_insert_with(|| sim.removal_loss(&input, p)))
+    };
     let at_input: Vec<(f64, f64)> = model.parts.iter().map(|p| box_at(p, &x0)).collect();
     let eps = crate::tolerance::Tolerance::for_size(model.size()).epsilon;
     let mut out = Vec::with_capacity(variations.len());
     for v in variations {
         let whole = sim.reference(v, &[]);
         let mut off = Vec::new();
-        for p in 0..parts {
+        for (p, &(thickness, area)) in at_input.iter().enumerate() {
             // The visible thickness in `v` of a loss, relative to the input's thickness.
-            let (thickness, area) = at_input[p];
             let (_, area_v) = box_at(&model.parts[p], v);
             let relative = |loss: f64| {
                 if area_v > 0.0 {
@@ -95,11 +102,7 @@ pub fn optional_parts<S: Similarity>(
             let bound = sim.removal_loss_lower_bound(&whole, p);
             let surely_present = bound >= OPTIONAL_THRESHOLD
                 && (sigma <= 0.0 || relative(bound) * thickness > sigma);
-            if surely_present {
-                continue;
-            }
-            let shows = *shown[p].get_or_insert_with(|| sim.removal_loss(&input, p));
-            if shows < OPTIONAL_THRESHOLD {
+            if surely_present || !shows(p, &|s| s >= OPTIONAL_THRESHOLD) {
                 continue;
             }
             let loss = sim.removal_loss(&whole, p);
@@ -110,7 +113,8 @@ pub fn optional_parts<S: Similarity>(
                 loss < OPTIONAL_THRESHOLD && !negative_sized(&model.parts[p], v, eps)
             } else {
                 loss < OPTIONAL_THRESHOLD
-                    || (relative(loss) < 0.5 * shows && relative(loss) * thickness <= sigma)
+                    || (relative(loss) * thickness <= sigma
+                        && shows(p, &|s| relative(loss) < 0.5 * s))
             };
             if optional {
                 off.push(p);

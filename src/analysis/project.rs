@@ -277,7 +277,16 @@ struct Block {
     /// Rows chosen since the factorisation, as rank-one corrections `K ← K − u uᵀ / s`
     /// (`u = K nᵀ` over the block's slots, `s = n K nᵀ`).
     corrections: Vec<(Vec<f64>, f64)>,
+    /// `K = N (NᵀHN)⁻¹ Nᵀ` over the block's slots, dense: made once the factorisation has
+    /// served as many columns as the block has slots (by then the solves it saves cost as
+    /// much as making it), for blocks of at most [`DENSE_MAX_SLOTS`] slots.
+    dense: std::cell::OnceCell<DMatrix<f64>>,
+    /// Columns served by solving since the factorisation.
+    served: std::cell::Cell<usize>,
 }
+
+/// Largest block kept as a dense `K` (its square, in floats, per variation's metric).
+const DENSE_MAX_SLOTS: usize = 1024;
 
 /// A block is factored afresh once this many rows were absorbed as corrections.
 const MAX_CORRECTIONS: usize = 32;
@@ -368,13 +377,56 @@ impl Block {
             rank: r,
             gram,
             corrections: Vec::new(),
+            dense: std::cell::OnceCell::new(),
+            served: std::cell::Cell::new(0),
         }
+    }
+
+    /// The dense `K`, when it is made or now worth making (see [`Block::dense`]).
+    fn dense_k(&self, gram: &nalgebra::Cholesky<f64, nalgebra::Dyn>) -> Option<&DMatrix<f64>> {
+        if let Some(k) = self.dense.get() {
+            return Some(k);
+        }
+        let n = self.slots.len();
+        self.served.set(self.served.get() + 1);
+        if n > DENSE_MAX_SLOTS || self.served.get() < n {
+            return None;
+        }
+        let mut nt = DMatrix::<f64>::zeros(self.rank, n);
+        for (i, row) in self.null.iter().enumerate() {
+            for &(j, v) in row {
+                nt[(j, i)] = v;
+            }
+        }
+        let x = gram.solve(&nt);
+        let mut k = DMatrix::<f64>::zeros(n, n);
+        for (i, row) in self.null.iter().enumerate() {
+            for &(j, v) in row {
+                for c in 0..n {
+                    k[(i, c)] += v * x[(j, c)];
+                }
+            }
+        }
+        Some(self.dense.get_or_init(|| k))
     }
 
     /// `K nᵀ` over the block's slots, for the part of `row` inside the block.
     fn k_column(&self, row: &Affine) -> Vec<f64> {
         let mut col = match &self.gram {
-            Some(gram) => self.expand(&gram.solve(&self.reduced(row))),
+            Some(gram) => match self.dense_k(gram) {
+                Some(k) => {
+                    let mut col = vec![0.0; self.slots.len()];
+                    for &(s, a) in &row.terms {
+                        if let Some(&i) = self.index.get(&s) {
+                            for (c, v) in col.iter_mut().zip(k.column(i).iter()) {
+                                *c += a * v;
+                            }
+                        }
+                    }
+                    col
+                }
+                None => self.expand(&gram.solve(&self.reduced(row))),
+            },
             None => vec![0.0; self.slots.len()],
         };
         for (u, s) in &self.corrections {
@@ -688,5 +740,48 @@ mod tests {
         let without: Vec<usize> = (0..5).collect();
         let free = cost(&faces, faces.number_metric(&without), &x, &row);
         assert!(free < 1e-6, "{free}");
+    }
+
+    /// A block serves the same columns `K nᵀ` whether it solves for each or reads them from
+    /// the dense `K` it makes once it has served as many as it has slots.
+    #[test]
+    fn dense_columns_are_the_solved_ones() {
+        let m = crate::front::test_model(
+            "for (i = [0:3]) translate([i * 12, 0, 0]) cube([10, 10 + i, 5]);\n\
+             translate([0, 0, 5]) cube([46, 14, 2]);\n",
+        );
+        let faces = Faces::of(&m);
+        let mut basis = RowBasis::default();
+        // One chosen row inside the block, so its null space is not the identity.
+        let (a, b) = (0 as SlotId, 1 as SlotId);
+        basis.add(&Affine {
+            constant: 0.0,
+            terms: vec![(a, 1.0), (b, -1.0)],
+        });
+        let slots: Vec<SlotId> = (0..m.slots.len() as SlotId).collect();
+        let metric = faces.metric(&m.slot_values(), &[]);
+        let block = Block::build(&faces, &metric, &basis, slots.clone());
+        let rows: Vec<Affine> = slots
+            .windows(2)
+            .map(|w| Affine {
+                constant: 0.0,
+                terms: vec![(w[0], 1.0), (w[1], -0.5)],
+            })
+            .collect();
+        let solved: Vec<Vec<f64>> = rows.iter().map(|r| block.k_column(r)).collect();
+        assert!(block.dense.get().is_none(), "fewer columns than slots");
+        for _ in 0..slots.len() {
+            block.k_column(&rows[0]);
+        }
+        assert!(
+            block.dense.get().is_some(),
+            "made once it has served enough"
+        );
+        let scale = solved.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
+        for (r, want) in rows.iter().zip(&solved) {
+            for (got, want) in block.k_column(r).iter().zip(want) {
+                assert!((got - want).abs() <= 1e-9 * scale, "{got} vs {want}");
+            }
+        }
     }
 }
