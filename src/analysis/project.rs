@@ -229,7 +229,9 @@ impl Faces {
         metric: &'a Metric,
         entries: &'a [u32],
     ) -> impl Iterator<Item = (f64, &'a Affine)> + 'a {
-        entries.iter().flat_map(move |&k| {
+        // A typed variation's number metric weighs no face: its parts are not walked.
+        let weighed = move |k: &&u32| metric.weights[**k as usize] != [0.0; 3];
+        entries.iter().filter(weighed).flat_map(move |&k| {
             let pf = &self.parts[k as usize];
             let w = metric.weights[k as usize];
             pf.forms()
