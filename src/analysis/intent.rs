@@ -427,7 +427,8 @@ fn context<'a>(faces: &'a Faces, candidates: &'a Candidates, samples: &[Sample])
 }
 
 /// The alive candidate most likely intent, scored afresh at this step, with its log
-/// posterior odds and test statistic (the first in list order among equals).
+/// posterior odds and test statistic (the first in list order among equals, odds that
+/// differ by round-off, [`RELATIVE_ROUNDOFF`] of their size, being equal).
 fn best<R>(
     cx: &Context<'_>,
     noise: &NoiseModel,
@@ -446,10 +447,23 @@ fn best<R>(
     // A score kept from an earlier step may be stale (rows chosen elsewhere in its block
     // change its conditional variance): the winner is scored again until it is fresh.
     loop {
-        let (c, odds) = alive
+        let scored: Vec<(usize, f64)> = alive
             .iter()
             .filter_map(|&c| Some((c, log_odds(cx, noise, c, scores.evidence[c]?))))
+            .collect();
+        let top = scored
+            .iter()
+            .copied()
             .min_by(|a, b| b.1.total_cmp(&a.1).then(a.0.cmp(&b.0)))?;
+        // Odds equal but for round-off are equal: equivalent candidates (one implied by
+        // another and the rows chosen) must not be told apart by the order of a sum.
+        let within = RELATIVE_ROUNDOFF * top.1.abs().max(1.0);
+        let (c, odds) = scored
+            .iter()
+            .copied()
+            .filter(|&(c, o)| c < top.0 && (o - top.1).abs() <= within)
+            .min_by_key(|&(c, _)| c)
+            .unwrap_or(top);
         if scores.scored_at[c] == step {
             let z = scores.evidence[c].map_or(f64::NAN, |e| noise.z(e));
             return Some((c, odds, z));
