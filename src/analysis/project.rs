@@ -401,13 +401,13 @@ impl Block {
             }
         }
         let x = gram.solve(&nt);
+        // K = N X, column by column.
         let mut k = DMatrix::<f64>::zeros(n, n);
-        for (i, row) in self.null.iter().enumerate() {
-            for &(j, v) in row {
-                for c in 0..n {
-                    k[(i, c)] += v * x[(j, c)];
-                }
-            }
+        for c in 0..n {
+            k.set_column(
+                c,
+                &DVector::from_vec(self.expand(&x.column(c).into_owned())),
+            );
         }
         Some(self.dense.get_or_init(|| k))
     }

@@ -5,8 +5,9 @@
 //! A method's output is an [`Output`] (kept rows, the solve, slider ranges, toggles,
 //! presets as free values); [`Truth`] is what the generator knows, read back through the
 //! loaded model: held-out slot values, the contacts the family's variations share (the
-//! input and every exact draw: training, held-out and a dozen more), the parts some training variation drops. Contacts are world boxes that
-//! touch or overlap within the model's tolerance.
+//! input and every exact draw: training, held-out and a dozen more), the parts some
+//! training variation drops. Contacts are world boxes that touch or overlap within the
+//! model's tolerance.
 
 use crate::analysis::anchors::Anchors;
 use crate::analysis::discover::Similarity;

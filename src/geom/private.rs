@@ -16,6 +16,7 @@
 //! and a part seen by more than [`MAX_NEIGHBOURS`] other bounds (the grid would be large).
 
 use super::aabb::Aabb;
+use super::csg::Program;
 use super::shape::{Kind, Shape, is_signed_permutation};
 use crate::ir::CsgNode;
 use crate::tolerance::GEOM_NEGLIGIBLE_ENTRY;
@@ -24,19 +25,10 @@ use crate::tolerance::GEOM_NEGLIGIBLE_ENTRY;
 pub const MAX_NEIGHBOURS: usize = 24;
 
 /// Whether the tree contains a point where `part` alone is present (every other part
-/// absent); a tree without complement is empty where every part is absent.
+/// absent): the tree pruned to that part, as [`Program::from_csg`] prunes absent parts,
+/// is not empty.
 pub(crate) fn alone_inside(node: &CsgNode, part: usize) -> bool {
-    match node {
-        CsgNode::Part(i) => *i == part,
-        CsgNode::Union(cs) => cs.iter().any(|c| alone_inside(c, part)),
-        CsgNode::Intersection(cs) => !cs.is_empty() && cs.iter().all(|c| alone_inside(c, part)),
-        CsgNode::Difference(cs) => match cs.split_first() {
-            Some((first, rest)) => {
-                alone_inside(first, part) && !rest.iter().any(|c| alone_inside(c, part))
-            }
-            None => false,
-        },
-    }
+    !Program::from_csg(node, &|i| (i == part).then_some(0)).is_empty()
 }
 
 /// An axis-aligned world box inside the shape (see the module docs). Entries of the matrix
