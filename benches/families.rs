@@ -9,7 +9,8 @@
 //! ours takes a fraction of a second); `FAMILIES_TRACE=1` prints
 //! every family's scores; `FAMILIES_DUMP=seed` prints one family's model in every style;
 //! `FAMILIES_WRITE=dir` writes each family as files for the command (`dir/seed<N>/`:
-//! `model.scad`, the noisy training variations `train<k>.scad`, the held-out `held<k>.scad`).
+//! `model.scad`, the noisy training variations `train<k>.scad`, the held-out `held<k>.scad`);
+//! `FAMILIES_SETUP=noise,training` runs one condition of your own instead of the rows.
 
 use rayon::prelude::*;
 use reparamc::back::rewrite::with_slot_values;
@@ -117,7 +118,21 @@ fn main() {
         noise: 0.01,
         training: 3,
     }];
-    if !main_only {
+    // `FAMILIES_SETUP=noise,training` runs that one condition instead (for instance `0,5`:
+    // exact variations, which show what the relation kinds can express at all).
+    let custom = std::env::var("FAMILIES_SETUP").ok().map(|v| {
+        let (n, t) = v.split_once(',').expect("FAMILIES_SETUP=noise,training");
+        Setup {
+            noise: n
+                .trim()
+                .parse()
+                .expect("noise as a fraction of the model's size"),
+            training: t.trim().parse().expect("training variations"),
+        }
+    });
+    if let Some(c) = custom {
+        setups = vec![c];
+    } else if !main_only {
         setups.extend([
             Setup {
                 noise: 0.005,

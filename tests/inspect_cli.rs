@@ -89,9 +89,11 @@ fn chair_json() {
     assert_eq!(slots.len(), 48);
     assert_eq!(parts.len(), 8);
     // Every relation that holds is listed: the paper's base constraints, then the kinds
-    // beyond them (tangency, symmetry, spacing), each counted on its own.
-    let beyond =
-        v["tangent_count"].as_u64().unwrap_or(0) + v["placement_count"].as_u64().unwrap_or(0);
+    // beyond them (tangency, symmetry, spacing, proportion), each counted on its own.
+    let beyond = ["tangent_count", "placement_count", "proportion_count"]
+        .iter()
+        .map(|k| v[k].as_u64().unwrap_or(0))
+        .sum::<u64>();
     assert!(beyond > 0, "the chair's legs mirror each other");
     assert_eq!(constraints.len() as u64, 172 + beyond);
     let paper = constraints

@@ -7,14 +7,16 @@
 //! another round side normal to the same axis (a board on an axle, wheels on one floor); it
 //! is offered to discovery but not counted among the paper's base constraints; so are mirror
 //! symmetry and equal spacing of placements (`placement`), which speak of parts' mid-planes,
-//! and equal insets (`inset`, without variations only), which speak of margins between
-//! touching parts' faces.
+//! equal insets (`inset`, without variations only), which speak of margins between
+//! touching parts' faces, and proportional extents (`proportion`: one two, three or four
+//! times another).
 //! A candidate holds when each of its equations' residuals is within the model's
 //! tolerance. Features are sorted by value and paired inside a sliding window, so the work is
 //! O(n log n + pairs), never all pairs. Every holding pair is counted, redundant or not: that
 //! count is the paper's "base constraints".
 
 use super::inset::{FaceIndex, face_index, inset_candidates};
+use super::proportion::proportion_candidates;
 use crate::ir::{Affine, Feature, FeatureKind, Model};
 use crate::tolerance::Tolerance;
 use serde::Serialize;
@@ -38,6 +40,9 @@ pub enum RelationKind {
     /// A part set in from a touching, wider part by equal margins on two axes (`inset`):
     /// not one of the paper's kinds.
     Inset,
+    /// An extent two, three or four times another (`proportion`): not one of the paper's
+    /// kinds.
+    Proportional,
 }
 
 impl RelationKind {
@@ -50,7 +55,7 @@ impl RelationKind {
     ];
 
     /// Every kind discovery knows.
-    pub const ALL: [RelationKind; 8] = [
+    pub const ALL: [RelationKind; 9] = [
         RelationKind::Coplanar,
         RelationKind::Coaxial,
         RelationKind::Coincident,
@@ -59,6 +64,7 @@ impl RelationKind {
         RelationKind::Symmetric,
         RelationKind::Spaced,
         RelationKind::Inset,
+        RelationKind::Proportional,
     ];
 
     pub fn name(self) -> &'static str {
@@ -71,6 +77,7 @@ impl RelationKind {
             RelationKind::Symmetric => "symmetric",
             RelationKind::Spaced => "spaced",
             RelationKind::Inset => "inset",
+            RelationKind::Proportional => "proportional",
         }
     }
 
@@ -84,6 +91,7 @@ impl RelationKind {
             RelationKind::Symmetric => "mirrors",
             RelationKind::Spaced => "is evenly spaced with",
             RelationKind::Inset => "is set in as far as",
+            RelationKind::Proportional => "is a multiple of",
         }
     }
 }
@@ -100,7 +108,7 @@ pub struct AffineFeature {
 }
 
 /// One relation between features: for the paper's kinds and tangency `rows[i] = a_i − b_i =
-/// 0`; a symmetric or spaced relation also speaks of the features in `more` (the centre
+/// 0`, for a proportion `a − factor·b = 0`; a symmetric or spaced relation also speaks of the features in `more` (the centre
 /// plane's bounds, the middle of three), and its rows say how (`placement`).
 ///
 /// Features with identical affine forms (the legs of one module, the instances of a loop)
@@ -115,6 +123,8 @@ pub struct Candidate {
     pub multiplicity: usize,
     /// Further features the rows speak of, beyond `a` and `b`.
     pub more: Vec<usize>,
+    /// How many times `b` makes `a`: the ratio of a proportion, 1 for every other kind.
+    pub factor: f64,
 }
 
 impl Candidate {
@@ -148,7 +158,7 @@ impl Candidate {
                 [oa, ob] => vec![a[0] - first(*oa) - b[0] + first(*ob)],
                 _ => vec![f64::NAN],
             },
-            _ => a.iter().zip(&b).map(|(x, y)| x - y).collect(),
+            _ => a.iter().zip(&b).map(|(x, y)| x - self.factor * y).collect(),
         }
     }
 
@@ -211,6 +221,7 @@ impl Candidates {
                     label(1)
                 )
             }
+            RelationKind::Proportional => format!("{a} is {} times {b}{more}", c.factor),
             _ => format!("{a} {} {b}{more}", c.kind.verb()),
         }
     }
@@ -346,6 +357,7 @@ fn candidate(
         rows,
         multiplicity: class_sizes[a] * class_sizes[b],
         more: Vec::new(),
+        factor: 1.0,
     }
 }
 
@@ -466,6 +478,12 @@ pub fn find_candidates_for(model: &Model, variations: &[Vec<f64>]) -> Candidates
     // own first, as contacts have (`contact_vars`).
     if variations.is_empty() {
         list.extend(inset_candidates(model, &features, &faces, &tolerance));
+    }
+    let (proportional, left_out) =
+        proportion_candidates(&features, &class_sizes, &tolerance, variations);
+    list.extend(proportional);
+    if left_out > 0 {
+        *unlisted.entry(RelationKind::Proportional).or_insert(0) += left_out;
     }
     list.sort_by_key(|c| (c.kind, c.a, c.b));
     identical.retain(|_, n| *n > 0);

@@ -2,10 +2,12 @@
 //!
 //! Under noise, a relation the variations change by less than their noise cannot be told
 //! from an intent one by its own residuals: only how often relations *like it* are intent
-//! can. Every candidate falls in a class by its structure alone: its kind, whether its two
+//! can. Every candidate falls in a class by its structure: its kind, whether its two
 //! features belong to one part, to parts that touch, or to parts apart, whether the parts
 //! are repeats of each other, and, for equal extents, whether both are measured along the
-//! same axis. Each class's share of intent relations is estimated from this model's own
+//! same axis; and by whether the variations could test it at all (its terms' changes,
+//! uncancelled, beyond what the noise explains), so that relations the variations cannot
+//! see broken are not decided by the share of relations like them that they do test. Each class's share of intent relations is estimated from this model's own
 //! evidence (expectation–maximisation over the two-hypothesis likelihood of
 //! `noise::log_likelihood_ratio`), and becomes the prior odds every relation of the class
 //! is tested with. The share's prior is what the model says with no variations: the
@@ -33,9 +35,15 @@ struct Class {
     parts: u8,
     repeated: bool,
     same_axis: bool,
+    /// Whether the variations could have shown the relation broken: its terms' changes,
+    /// uncancelled, would be more than the noise explains. A relation among numbers that
+    /// move no more than the noise (a thin board's thickness under noise as large) learns
+    /// nothing from its own residuals, so it must not take its share from relations like
+    /// it that the variations do test.
+    testable: bool,
 }
 
-fn class_of(model: &Model, candidates: &Candidates, i: usize) -> Class {
+fn class_of(model: &Model, candidates: &Candidates, i: usize, testable: bool) -> Class {
     let c = &candidates.list[i];
     let (fa, fb) = (&candidates.features[c.a], &candidates.features[c.b]);
     let tol = candidates.tolerance;
@@ -55,6 +63,7 @@ fn class_of(model: &Model, candidates: &Candidates, i: usize) -> Class {
         parts,
         repeated: fa.part != fb.part && repeated(model, fa.part, fb.part, &tol),
         same_axis,
+        testable,
     }
 }
 
@@ -71,7 +80,11 @@ pub fn prior_log_odds(
     let class: Vec<usize> = (0..n)
         .map(|i| {
             let next = index.len();
-            *index.entry(class_of(model, candidates, i)).or_insert(next)
+            let e = evidence[i];
+            let testable = e.dof > 0 && !noise.explains(Evidence::new(e.change, e.dof));
+            *index
+                .entry(class_of(model, candidates, i, testable))
+                .or_insert(next)
         })
         .collect();
     let llr: Vec<f64> = evidence
@@ -121,5 +134,68 @@ pub fn sigmoid(x: f64) -> f64 {
     } else {
         let e = x.exp();
         e / (1.0 + e)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::prior_log_odds;
+    use crate::analysis::noise::{Evidence, INTENT_Z, NoiseModel};
+    use crate::analysis::{RelationKind, find_candidates};
+    use crate::front::test_model as model;
+
+    /// Five boxes apart, of one width and other sizes: ten equal widths, a class the
+    /// structural prior drops. Nine the variations show intent (their terms moved far, the
+    /// residuals are noise); one whose terms moved no more than the noise must not borrow
+    /// their share.
+    #[test]
+    fn a_relation_the_variations_cannot_test_keeps_the_prior_of_its_kind() {
+        let text: String = (0..5)
+            .map(|k| {
+                format!(
+                    "translate([{}, 0, 0]) cube([10, {}, {}]);\n",
+                    100 * k,
+                    20 + 7 * k,
+                    30 + 11 * k
+                )
+            })
+            .collect();
+        let m = model(&text);
+        let c = find_candidates(&m);
+        let widths: Vec<usize> = (0..c.list.len())
+            .filter(|&i| {
+                let x = &c.list[i];
+                x.kind == RelationKind::Equal
+                    && c.features[x.a].label.ends_with(".width")
+                    && c.features[x.b].label.ends_with(".width")
+            })
+            .collect();
+        assert_eq!(widths.len(), 10, "{:?}", c.list);
+        let untestable = widths[0];
+        let evidence: Vec<Evidence> = (0..c.list.len())
+            .map(|i| match i {
+                i if i == untestable => Evidence {
+                    cost: 0.5,
+                    dof: 3,
+                    change: 0.5,
+                },
+                i if widths.contains(&i) => Evidence {
+                    cost: 0.5,
+                    dof: 3,
+                    change: 1e4,
+                },
+                _ => Evidence::new(0.0, 0),
+            })
+            .collect();
+        let noise = NoiseModel {
+            sigma: 1.0,
+            floor: 1e-6,
+            pooled: 0,
+            critical_z: INTENT_Z,
+            told: true,
+        };
+        let prior = prior_log_odds(&m, &c, &evidence, &noise, m.size());
+        assert!(prior[widths[1]] > 1.0, "tested: {}", prior[widths[1]]);
+        assert!(prior[untestable] < 0.0, "untested: {}", prior[untestable]);
     }
 }

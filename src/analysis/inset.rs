@@ -118,6 +118,7 @@ pub fn inset_candidates(
                         rows: vec![row],
                         multiplicity: 1,
                         more: vec![m1.outer, m2.outer],
+                        factor: 1.0,
                     });
                 }
             }

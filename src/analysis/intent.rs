@@ -81,6 +81,8 @@ struct Context<'a> {
     prior: Vec<f64>,
     /// The model's size: the largest residual scale a broken relation may have.
     size: f64,
+    /// The input's slot values, from which the variations' changes are measured.
+    input: Vec<f64>,
 }
 
 impl Context<'_> {
@@ -108,18 +110,24 @@ impl Context<'_> {
     ) -> Evidence {
         let rows = rows_of(self.candidates, c);
         let mut made: Vec<Option<Projection>> = projectors.iter().map(|_| None).collect();
-        let mut cost = 0.0;
+        let (mut cost, mut change) = (0.0, 0.0);
         for (p, &seen) in points.iter().zip(&self.seen[c]) {
             if seen {
                 let projector = &mut projectors[p.group];
                 let projection = made[p.group]
                     .get_or_insert_with(|| chosen.projection(projector, self.faces, &rows));
                 cost += projector.shift_and_cost_at(projection, &p.current, &rows).1;
+                let terms: Vec<f64> = rows
+                    .iter()
+                    .map(|r| terms_change(r, &p.current, &self.input))
+                    .collect();
+                change += projector.cost_of(projection, &terms);
             }
         }
         Evidence {
             cost,
             dof: self.dof[c],
+            change,
         }
     }
 }
@@ -133,8 +141,9 @@ struct Scores {
 /// The evidence that can tell the noise. A relation whose slots every variation leaves at
 /// the input's values (numbers no one changed, noised or not) is kept exactly whatever `σ`
 /// is, and pooling it would pull the estimate to the floor. And the variations tell their
-/// noise only if some relation they move cancels most of its numbers' own changes
-/// (`NOISE_CANCELLATION_SHARE`): that is what an intent relation under noise looks like.
+/// noise only if some relation they move cancels most of its numbers' own changes in every
+/// variation (`NOISE_CANCELLATION_SHARE`): that is what an intent relation under noise
+/// looks like.
 /// Where none does (every number of the model varies apart), every relation they move is
 /// a change of design, and pooling them would make those changes pass for the noise:
 /// nothing is pooled, and `σ` stays at the floor.
@@ -166,21 +175,34 @@ fn informative(
     moving.into_iter().map(|c| evidence[c]).collect()
 }
 
-/// Whether `rows`' residuals over the variations that keep their parts (`seen`) cancel most
-/// of their terms' changes from the `input`.
+/// How far a row's terms moved from the `input` at `x`, as one residual: the root sum of
+/// squares of each term's change (what the row would be off by had they not cancelled).
+fn terms_change(row: &Affine, x: &[f64], input: &[f64]) -> f64 {
+    row.terms
+        .iter()
+        .map(|&(s, a)| (a * (x[s as usize] - input[s as usize])).powi(2))
+        .sum::<f64>()
+        .sqrt()
+}
+
+/// Whether `rows`' residuals cancel most of their terms' changes from the `input` in every
+/// variation that keeps their parts (`seen`), and some variation keeps them. An intent
+/// relation under noise cancels in each variation that moves its numbers by more than the
+/// noise; a broken one may cancel in one by chance (its terms moved alike), but in every one
+/// only by a chance as small as the product. Among hundreds of candidates, one summed over
+/// the variations cancelling by chance is likely, and it made the noise "told" in families
+/// whose every number varies apart.
 fn cancels(rows: &[&Affine], input: &[f64], samples: &[Sample], seen: &[bool]) -> bool {
-    let (mut residual, mut change) = (0.0, 0.0);
-    for (v, _) in samples.iter().zip(seen).filter(|(_, s)| **s) {
-        for r in rows {
-            residual += (r.eval(&v.values) - r.eval(input)).powi(2);
-            change += r
-                .terms
-                .iter()
-                .map(|&(s, a)| (a * (v.values[s as usize] - input[s as usize])).powi(2))
-                .sum::<f64>();
-        }
-    }
-    residual <= NOISE_CANCELLATION_SHARE * change
+    let mut kept = samples.iter().zip(seen).filter(|(_, s)| **s).peekable();
+    kept.peek().is_some()
+        && kept.all(|(v, _)| {
+            let (mut residual, mut change) = (0.0, 0.0);
+            for r in rows {
+                residual += (r.eval(&v.values) - r.eval(input)).powi(2);
+                change += terms_change(r, &v.values, input).powi(2);
+            }
+            residual <= NOISE_CANCELLATION_SHARE * change
+        })
 }
 
 /// Every variation at its own values, and one projector in the noise model's metric per
@@ -238,16 +260,16 @@ pub fn select<S: Similarity>(
     let floor = Tolerance::for_size(model.size()).epsilon;
     let mut cx = context(faces, candidates, samples);
     cx.size = model.size();
+    cx.input = model.slot_values();
     let mut chosen = Chosen::new(faces);
     let mut pool = Pool::new(&vec![0; n], |i| !chosen.implies(&rows_of(candidates, i)));
     let (mut points, mut projectors) = start_points::<S::Reference>(faces, samples);
     let mut scores = first_scores(&cx, &pool, &points, &mut projectors, &mut chosen);
     let all: Vec<Evidence> = (0..n)
-        .map(|c| scores.evidence[c].unwrap_or(Evidence { cost: 0.0, dof: 0 }))
+        .map(|c| scores.evidence[c].unwrap_or(Evidence::new(0.0, 0)))
         .collect();
     let ceiling = NOISE_MAX_SHARE * model.size();
-    let input = model.slot_values();
-    let pooled = informative(&cx, &input, samples, &all);
+    let pooled = informative(&cx, &cx.input, samples, &all);
     let noise = NoiseModel::estimate(&pooled, floor, ceiling);
     cx.prior = prior_log_odds(model, candidates, &all, &noise, cx.size);
     let mut out = Selection {
@@ -423,6 +445,7 @@ fn context<'a>(faces: &'a Faces, candidates: &'a Candidates, samples: &[Sample])
         holds: candidates.tolerance.epsilon.max(roundoff),
         prior: vec![0.0; candidates.list.len()],
         size: 1.0,
+        input: Vec::new(),
     }
 }
 

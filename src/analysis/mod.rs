@@ -37,6 +37,7 @@ pub mod pool;
 pub mod precision;
 pub mod prior;
 pub mod project;
+pub mod proportion;
 pub mod ranges;
 pub mod reparam;
 pub mod rowbasis;

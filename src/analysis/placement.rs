@@ -188,6 +188,7 @@ fn relation(
             class_sizes[a] * class_sizes[b]
         },
         more: plane.made_of.clone(),
+        factor: 1.0,
     }
 }
 
@@ -223,6 +224,7 @@ fn spaced(
                 rows: vec![form],
                 multiplicity: class_sizes[w[0]] * class_sizes[w[1]] * class_sizes[w[2]],
                 more: vec![w[1]],
+                factor: 1.0,
             });
         }
     }

@@ -8,7 +8,8 @@
 //! equal insets (`inset`), equal extents along the same axis between repeated parts (same kind,
 //! same sizes: four legs), and a bar's square profile (its two short sides equal, as a
 //! cylinder's radius is one number). Equal sizes of unrelated parts, or of a board's or
-//! block's own sides, go.
+//! block's own sides, go, and so do proportional sizes (one of many chances too: among
+//! round numbers, halves are everywhere).
 //!
 //! Why these and not every equality: among n numbers some pair is equal by chance, and
 //! the more pairs one looks at the likelier. The kept kinds are pairs the structure singles
@@ -80,6 +81,7 @@ pub fn structural_prior(model: &Model, c: &Candidates) -> Vec<usize> {
                 RelationKind::Coplanar | RelationKind::Coincident | RelationKind::Tangent => {
                     fa.part != fb.part && touching(model, fa.part, fb.part, &tol)
                 }
+                RelationKind::Proportional => false,
                 RelationKind::Equal => {
                     let same_axis = matches!((fa.kind, fb.kind),
                         (FeatureKind::Extent { axis: x }, FeatureKind::Extent { axis: y }) if x == y);

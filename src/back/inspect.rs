@@ -88,6 +88,9 @@ pub struct Inspection {
     /// kinds too.
     #[serde(skip_serializing_if = "is_zero")]
     pub placement_count: usize,
+    /// Extents two, three or four times another: beyond the paper's kinds too.
+    #[serde(skip_serializing_if = "is_zero")]
+    pub proportion_count: usize,
     /// Pairs of features driven by the very same numbers (instances of one module or loop
     /// body): counted above, but they hold for every setting and are not listed.
     pub identical_by_construction: usize,
@@ -177,6 +180,7 @@ pub fn inspect(sources: &SourceMap, model: &Model, candidates: &Candidates) -> I
         placement_count: candidates.count(RelationKind::Symmetric)
             + candidates.count(RelationKind::Spaced)
             + candidates.count(RelationKind::Inset),
+        proportion_count: candidates.count(RelationKind::Proportional),
         constraint_counts: RelationKind::PAPER
             .iter()
             .map(|&k| (k, candidates.count(k)))
@@ -317,7 +321,10 @@ impl Inspection {
         let _ = writeln!(
             out,
             "\nRelations that hold ({})",
-            self.base_constraint_count + self.tangent_count + self.placement_count
+            self.base_constraint_count
+                + self.tangent_count
+                + self.placement_count
+                + self.proportion_count
         );
         if self.identical_by_construction > 0 {
             let _ = writeln!(

@@ -142,7 +142,7 @@ mod evidence_tests {
 
     #[test]
     fn exact_variations_give_residuals_in_world_units_not_deviations() {
-        let exact = NoiseModel::estimate(&[Evidence { cost: 0.0, dof: 3 }; 20], 1e-6, 1e6);
+        let exact = NoiseModel::estimate(&[Evidence::new(0.0, 3); 20], 1e-6, 1e6);
         let kept = relation(0.1, 0.0).evidence(Some(&exact));
         assert_eq!(kept, "every variation keeps it exactly");
         let broken = relation(4e6, 2.0).evidence(Some(&exact));
@@ -152,10 +152,7 @@ mod evidence_tests {
     #[test]
     fn noisy_variations_give_the_statistic_and_the_odds() {
         let costs: Vec<Evidence> = (0..40)
-            .map(|k| Evidence {
-                cost: 0.5 + 0.05 * k as f64,
-                dof: 2,
-            })
+            .map(|k| Evidence::new(0.5 + 0.05 * k as f64, 2))
             .collect();
         let noisy = NoiseModel::estimate(&costs, 1e-6, 1e6);
         assert!(!noisy.exact(), "{noisy:?}");
