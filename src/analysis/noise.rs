@@ -145,7 +145,8 @@ impl NoiseModel {
     ///
     /// Bounding `s` by what the relation's own terms' changes could make of it
     /// (`Evidence::change`) instead of the model's size was measured and left out: on
-    /// seeds 200..400 it gained 1.5 points of reach and lost 12 of dimension within d + 1,
+    /// seeds 200..400 it gained 1.5 points of reach and lost 12 of dimension within d + 1
+    /// (README, "what the relation kinds can say"),
     /// since most intent relations among small numbers then fall to their class's prior.
     /// Whether the variations could test a relation at all decides its class instead
     /// (`classes`).
