@@ -19,6 +19,12 @@ use reparamc::families::run::{Case, FamilyResult, Setup, evaluate_family};
 
 fn seeds() -> Vec<u64> {
     let spec = std::env::var("FAMILIES_SEEDS").unwrap_or_else(|_| "200".into());
+    if spec.contains(',') {
+        return spec
+            .split(',')
+            .map(|s| s.trim().parse().expect("FAMILIES_SEEDS=a,b,c"))
+            .collect();
+    }
     match spec.split_once("..") {
         Some((a, b)) => {
             let a: u64 = a.trim().parse().expect("FAMILIES_SEEDS=a..b");

@@ -10,6 +10,7 @@
 //! change translates every face alike along it (to the tolerance), so an anchor never pins
 //! a size.
 
+use super::contacts::ContactSide;
 use super::linalg::least_norm_solve;
 use super::project::{Faces, project_onto};
 use crate::ir::feature::world_intervals;
@@ -159,14 +160,106 @@ pub fn project_variations(
     values: &[Vec<f64>],
     optional: &[Vec<usize>],
 ) -> Vec<Vec<f64>> {
+    project_variations_keeping(anchors, faces, rows, values, optional, &[], 0.0)
+}
+
+/// As [`project_variations`], and each projection keeps the `contacts` whose parts the
+/// variation has: a contact the variations keep within their noise is a constraint like
+/// the rows, and a gap the noise left in a variation is noise, not a preset to reproduce
+/// (a preset with a gap widens the sliders' box to settings that part the two). A side the
+/// projection breaks by more than `tolerance` is made to hold at its bound (touching, or
+/// the input's own gap), the most broken first, and the variation projected again until
+/// none is broken: a point that keeps every side, near the nearest one (an active set
+/// that only grows; a side that cannot hold with the rows is left broken).
+pub fn project_variations_keeping(
+    anchors: &Anchors,
+    faces: &Faces,
+    rows: &[Affine],
+    values: &[Vec<f64>],
+    optional: &[Vec<usize>],
+    contacts: &[ContactSide],
+    tolerance: f64,
+) -> Vec<Vec<f64>> {
     values
         .iter()
         .zip(optional)
         .map(|(v, o)| {
             let own = anchors.rows_at(v);
-            let all_rows: Vec<&Affine> = rows.iter().chain(&anchors.gauge).chain(&own).collect();
-            let p = project_onto(faces, v, &all_rows, o);
-            anchors.moved_to_input(&p)
+            let sides: Vec<(Affine, f64)> = contacts
+                .iter()
+                .filter(|c| !o.contains(&c.parts[0]) && !o.contains(&c.parts[1]))
+                .map(|c| (c.form.clone(), c.form.eval(&anchors.input).min(0.0)))
+                .collect();
+            let mut held: Vec<Affine> = Vec::new();
+            loop {
+                let all_rows: Vec<&Affine> = rows
+                    .iter()
+                    .chain(&anchors.gauge)
+                    .chain(&own)
+                    .chain(&held)
+                    .collect();
+                let p = project_onto(faces, v, &all_rows, o);
+                let worst = sides
+                    .iter()
+                    .map(|(f, floor)| (f, floor, floor - f.eval(&p)))
+                    .filter(|(f, _, deficit)| {
+                        *deficit > tolerance && !held.iter().any(|h| h.terms == f.terms)
+                    })
+                    .max_by(|a, b| a.2.total_cmp(&b.2));
+                match worst {
+                    Some((f, floor, _)) => held.push(f.add(&Affine::constant(-floor))),
+                    None => return anchors.moved_to_input(&p),
+                }
+            }
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::analysis::contacts::common_contacts;
+
+    /// A top resting on a leg, no relation kept between them, and a variation whose noise
+    /// left a 2-unit gap where the two meet (within the 3 units its noise explains). The
+    /// contact is the variations'; the preset keeps it, where the plain projection keeps
+    /// the gap.
+    #[test]
+    fn a_preset_closes_the_gap_noise_left_in_a_contact() {
+        let model = crate::front::test_model(
+            "cube([10, 10, 50]);\ntranslate([0, 0, 50]) cube([40, 40, 2]);\n",
+        );
+        let x0 = model.slot_values();
+        let noisy: Vec<f64> = x0
+            .iter()
+            .map(|&v| if v == 50.0 { v + 10.0 } else { v })
+            .collect();
+        let leg_height = x0.iter().position(|&v| v == 50.0).unwrap();
+        let mut noisy = noisy;
+        noisy[leg_height] -= 2.0;
+        let anchors = Anchors::of(&model);
+        let faces = Faces::of(&model);
+        let contacts = common_contacts(&model, std::slice::from_ref(&noisy), &[vec![]], 3.0);
+        assert!(
+            !contacts.is_empty(),
+            "the contact is seen through the noise"
+        );
+        let gap = |p: &[f64]| {
+            contacts
+                .iter()
+                .map(|c| c.form.eval(p))
+                .fold(f64::MAX, f64::min)
+        };
+        let optional = [vec![]];
+        let values = std::slice::from_ref(&noisy);
+        let plain = project_variations(&anchors, &faces, &[], values, &optional);
+        let kept =
+            project_variations_keeping(&anchors, &faces, &[], values, &optional, &contacts, 1e-9);
+        assert!(
+            gap(&plain[0]) < -1.0,
+            "plain projection: {}",
+            gap(&plain[0])
+        );
+        assert!(gap(&kept[0]) > -1e-6, "kept: {}", gap(&kept[0]));
+    }
 }

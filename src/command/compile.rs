@@ -8,7 +8,7 @@
 //! file only composes them, and every decision is recorded in the [`Report`].
 
 use super::pictures::{Progress, pictures};
-use crate::analysis::anchors::{Anchors, project_variations};
+use crate::analysis::anchors::{Anchors, project_variations_keeping};
 use crate::analysis::candidates::{Candidate, Candidates};
 use crate::analysis::classes::sigmoid;
 use crate::analysis::contact_vars::keep_contacts;
@@ -231,13 +231,14 @@ pub fn reparameterize_telling(
         rows
     };
     let mut solution = solve(model, &anchors, &rows);
-    let projected = project_variations(&anchors, &faces, &rows, &values, &optional);
-    // Emit: sliders, blends and switches, the file and its presets.
     let tolerance = Tolerance::for_size(model.size());
+    let eps = tolerance.epsilon;
     // A contact is evidence where the variation shows both parts.
     let unshown: Vec<Vec<usize>> = samples.iter().map(Sample::unshown).collect();
     let contacts = common_contacts(model, &raw, &unshown, contact_slack(&choice, tolerance));
-    let eps = tolerance.epsilon;
+    let projected =
+        project_variations_keeping(&anchors, &faces, &rows, &values, &optional, &contacts, eps);
+    // Emit: sliders, blends and switches, the file and its presets.
     let (input_free, mut variation_free, slider_ranges) =
         keep_contacts(model, &mut solution, &contacts, eps, &mut |sol| {
             let (input_free, variation_free) = free_values(model, sol, &projected);
