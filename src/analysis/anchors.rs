@@ -163,10 +163,13 @@ pub fn project_variations(
     project_variations_keeping(anchors, faces, rows, values, optional, &[], 0.0)
 }
 
-/// As [`project_variations`], and each projection keeps the `contacts` whose parts the
-/// variation has: a contact the variations keep within their noise is a constraint like
-/// the rows, and a gap the noise left in a variation is noise, not a preset to reproduce
-/// (a preset with a gap widens the sliders' box to settings that part the two). A side the
+/// As [`project_variations`], and each projection keeps the `contacts`: a contact the
+/// variations keep within their noise is a constraint like the rows, and a gap the noise
+/// left in a variation is noise, not a preset to reproduce (a preset with a gap widens the
+/// sliders' box to settings that part the two). A part a variation does without keeps its
+/// contacts too: nobody saw its numbers there, and the preset's values for it are where
+/// its switch puts it back (the ranges hold them, so a gap there would part it from the
+/// rest at settings inside them). A side the
 /// projection breaks by more than `tolerance` is made to hold at its bound (touching, or
 /// the input's own gap), the most broken first, and the variation projected again until
 /// none is broken: a point that keeps every side, near the nearest one (an active set
@@ -187,7 +190,6 @@ pub fn project_variations_keeping(
             let own = anchors.rows_at(v);
             let sides: Vec<(Affine, f64)> = contacts
                 .iter()
-                .filter(|c| !o.contains(&c.parts[0]) && !o.contains(&c.parts[1]))
                 .map(|c| (c.form.clone(), c.form.eval(&anchors.input).min(0.0)))
                 .collect();
             let mut held: Vec<Affine> = Vec::new();
@@ -223,7 +225,7 @@ mod tests {
     /// A top resting on a leg, no relation kept between them, and a variation whose noise
     /// left a 2-unit gap where the two meet (within the 3 units its noise explains). The
     /// contact is the variations'; the preset keeps it, where the plain projection keeps
-    /// the gap.
+    /// the gap, and keeps it in a variation without the top too.
     #[test]
     fn a_preset_closes_the_gap_noise_left_in_a_contact() {
         let model = crate::front::test_model(
@@ -261,5 +263,17 @@ mod tests {
             gap(&plain[0])
         );
         assert!(gap(&kept[0]) > -1e-6, "kept: {}", gap(&kept[0]));
+        // A variation without the top: its numbers there are where its switch puts it back.
+        let without_top = [vec![1]];
+        let kept = project_variations_keeping(
+            &anchors,
+            &faces,
+            &[],
+            values,
+            &without_top,
+            &contacts,
+            1e-9,
+        );
+        assert!(gap(&kept[0]) > -1e-6, "without the top: {}", gap(&kept[0]));
     }
 }
