@@ -277,7 +277,8 @@ struct Block {
     /// Cholesky factor of `NᵀHN` (`None` when the rows fix the block: `r = 0`).
     gram: Option<nalgebra::Cholesky<f64, nalgebra::Dyn>>,
     /// Rows chosen since the factorisation, as rank-one corrections `K ← K − u uᵀ / s`
-    /// (`u = K nᵀ` over the block's slots, `s = n K nᵀ`).
+    /// (`u = K nᵀ` over the block's slots, `s = n K nᵀ`), while there is no dense `K` to
+    /// fold them into (the sum is the same in any order).
     corrections: Vec<(Vec<f64>, f64)>,
     /// `K = N (NᵀHN)⁻¹ Nᵀ` over the block's slots, dense: made once the factorisation has
     /// served as many columns as the block has slots (by then the solves it saves cost as
@@ -285,12 +286,15 @@ struct Block {
     dense: std::cell::OnceCell<DMatrix<f64>>,
     /// Columns served by solving since the factorisation.
     served: std::cell::Cell<usize>,
+    /// Rows absorbed since the factorisation: corrections, or folded into the dense `K`.
+    absorbed: usize,
 }
 
 /// Largest block kept as a dense `K` (its square, in floats, per variation's metric).
 const DENSE_MAX_SLOTS: usize = 1024;
 
-/// A block is factored afresh once this many rows were absorbed as corrections.
+/// A block is factored afresh once this many rows were absorbed (as corrections or folded
+/// into its dense `K`), which bounds the round-off the updates gather.
 const MAX_CORRECTIONS: usize = 32;
 
 /// `Σ a·v` over the sparse rows `v` (of `N`) picked by a sparse combination: a sparse
@@ -381,6 +385,7 @@ impl Block {
             corrections: Vec::new(),
             dense: std::cell::OnceCell::new(),
             served: std::cell::Cell::new(0),
+            absorbed: 0,
         }
     }
 
@@ -440,6 +445,23 @@ impl Block {
             }
         }
         col
+    }
+
+    /// Takes `row` into `K` as a rank-one correction, folded into the dense `K` where there
+    /// is one (a column then costs the row's terms, not one pass per correction).
+    fn absorb(&mut self, row: &Affine) {
+        let u = self.k_column(row);
+        let s = self.dot(row, &u);
+        if s > 0.0 && s.is_finite() {
+            self.absorbed += 1;
+            match self.dense.get_mut() {
+                Some(k) => {
+                    let u = DVector::from_column_slice(&u);
+                    k.ger(-1.0 / s, &u, &u, 1.0);
+                }
+                None => self.corrections.push((u, s)),
+            }
+        }
     }
 
     /// `n · v` for the part of `row` inside the block and `v` over its slots.
@@ -520,15 +542,11 @@ impl Projector {
         let Some(block) = self.blocks.get_mut(&root) else {
             return;
         };
-        if block.corrections.len() >= MAX_CORRECTIONS {
+        if block.absorbed >= MAX_CORRECTIONS {
             self.blocks.remove(&root);
             return;
         }
-        let u = block.k_column(row);
-        let s = block.dot(row, &u);
-        if s > 0.0 && s.is_finite() {
-            block.corrections.push((u, s));
-        }
+        block.absorb(row);
     }
 
     /// Forgets the factored blocks of these representatives (blocks about to be joined).
@@ -794,6 +812,21 @@ mod tests {
         let scale = solved.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
         for (r, want) in rows.iter().zip(&solved) {
             for (got, want) in block.k_column(r).iter().zip(want) {
+                assert!((got - want).abs() <= 1e-9 * scale, "{got} vs {want}");
+            }
+        }
+        // Rows absorbed afterwards: folded into the dense `K` here, kept as corrections in a
+        // block without one; both serve the same columns.
+        let mut block = block;
+        let mut sparse = Block::build(&faces, &metric, &basis, slots.clone());
+        for r in &rows[1..4] {
+            block.absorb(r);
+            sparse.absorb(r);
+        }
+        assert!(block.corrections.is_empty() && sparse.dense.get().is_none());
+        assert_eq!((block.absorbed, sparse.corrections.len()), (3, 3));
+        for r in &rows[4..] {
+            for (got, want) in block.k_column(r).iter().zip(sparse.k_column(r)) {
                 assert!((got - want).abs() <= 1e-9 * scale, "{got} vs {want}");
             }
         }
