@@ -169,11 +169,11 @@ pub fn project_variations(
 /// sliders' box to settings that part the two). A part a variation does without keeps its
 /// contacts too: nobody saw its numbers there, and the preset's values for it are where
 /// its switch puts it back (the ranges hold them, so a gap there would part it from the
-/// rest at settings inside them). A side the
-/// projection breaks by more than `tolerance` is made to hold at its bound (touching, or
-/// the input's own gap), the most broken first, and the variation projected again until
-/// none is broken: a point that keeps every side, near the nearest one (an active set
-/// that only grows; a side that cannot hold with the rows is left broken).
+/// rest at settings inside them). A side the projection breaks by more than `tolerance` is
+/// made to hold at its bound (touching, or the input's own gap), the most broken first, and
+/// the variation projected again until none is broken: a point that keeps every side, near
+/// the nearest one (an active set that only grows; a side that cannot hold with the rows
+/// is left broken).
 pub fn project_variations_keeping(
     anchors: &Anchors,
     faces: &Faces,
@@ -183,33 +183,35 @@ pub fn project_variations_keeping(
     contacts: &[ContactSide],
     tolerance: f64,
 ) -> Vec<Vec<f64>> {
+    // Each side less its bound (`form − bound ≥ 0` keeps it; `= 0` holds it there).
+    let at_bound: Vec<Affine> = contacts
+        .iter()
+        .map(|c| {
+            let bound = c.form.eval(&anchors.input).min(0.0);
+            c.form.add(&Affine::constant(-bound))
+        })
+        .collect();
     values
         .iter()
         .zip(optional)
         .map(|(v, o)| {
             let own = anchors.rows_at(v);
-            let sides: Vec<(Affine, f64)> = contacts
-                .iter()
-                .map(|c| (c.form.clone(), c.form.eval(&anchors.input).min(0.0)))
-                .collect();
-            let mut held: Vec<Affine> = Vec::new();
+            let mut held: Vec<usize> = Vec::new();
             loop {
                 let all_rows: Vec<&Affine> = rows
                     .iter()
                     .chain(&anchors.gauge)
                     .chain(&own)
-                    .chain(&held)
+                    .chain(held.iter().map(|&k| &at_bound[k]))
                     .collect();
                 let p = project_onto(faces, v, &all_rows, o);
-                let worst = sides
-                    .iter()
-                    .map(|(f, floor)| (f, floor, floor - f.eval(&p)))
-                    .filter(|(f, _, deficit)| {
-                        *deficit > tolerance && !held.iter().any(|h| h.terms == f.terms)
-                    })
-                    .max_by(|a, b| a.2.total_cmp(&b.2));
+                let worst = (0..at_bound.len())
+                    .filter(|k| !held.contains(k))
+                    .map(|k| (k, -at_bound[k].eval(&p)))
+                    .filter(|&(_, deficit)| deficit > tolerance)
+                    .max_by(|a, b| a.1.total_cmp(&b.1));
                 match worst {
-                    Some((f, floor, _)) => held.push(f.add(&Affine::constant(-floor))),
+                    Some((k, _)) => held.push(k),
                     None => return anchors.moved_to_input(&p),
                 }
             }
@@ -232,12 +234,12 @@ mod tests {
             "cube([10, 10, 50]);\ntranslate([0, 0, 50]) cube([40, 40, 2]);\n",
         );
         let x0 = model.slot_values();
-        let noisy: Vec<f64> = x0
+        // Leg and top 10 higher, the leg (the first 50) 2 short of the top.
+        let mut noisy: Vec<f64> = x0
             .iter()
             .map(|&v| if v == 50.0 { v + 10.0 } else { v })
             .collect();
         let leg_height = x0.iter().position(|&v| v == 50.0).unwrap();
-        let mut noisy = noisy;
         noisy[leg_height] -= 2.0;
         let anchors = Anchors::of(&model);
         let faces = Faces::of(&model);

@@ -8,8 +8,7 @@
 //! is offered to discovery but not counted among the paper's base constraints; so are mirror
 //! symmetry and equal spacing of placements (`placement`), which speak of parts' mid-planes,
 //! equal insets (`inset`, without variations only), which speak of margins between
-//! touching parts' faces, and proportional extents (`proportion`: one two, three or four
-//! times another).
+//! touching parts' faces, and proportional extents (`proportion`: one twice another).
 //! A candidate holds when each of its equations' residuals is within the model's
 //! tolerance. Features are sorted by value and paired inside a sliding window, so the work is
 //! O(n log n + pairs), never all pairs. Every holding pair is counted, redundant or not: that
@@ -40,8 +39,7 @@ pub enum RelationKind {
     /// A part set in from a touching, wider part by equal margins on two axes (`inset`):
     /// not one of the paper's kinds.
     Inset,
-    /// An extent two, three or four times another (`proportion`): not one of the paper's
-    /// kinds.
+    /// An extent twice another (`proportion`): not one of the paper's kinds.
     Proportional,
 }
 
@@ -108,8 +106,9 @@ pub struct AffineFeature {
 }
 
 /// One relation between features: for the paper's kinds and tangency `rows[i] = a_i − b_i =
-/// 0`, for a proportion `a − factor·b = 0`; a symmetric or spaced relation also speaks of the features in `more` (the centre
-/// plane's bounds, the middle of three), and its rows say how (`placement`).
+/// 0`, for a proportion `a − factor·b = 0`; a symmetric or spaced relation also speaks of
+/// the features in `more` (the centre plane's bounds, the middle of three), and its rows
+/// say how (`placement`).
 ///
 /// Features with identical affine forms (the legs of one module, the instances of a loop)
 /// form a class; a relation between two classes stands for every pair of their members,

@@ -7,8 +7,9 @@
 //! are repeats of each other, and, for equal extents, whether both are measured along the
 //! same axis; and by whether the variations could test it at all (its terms' changes,
 //! uncancelled, beyond what the noise explains), so that relations the variations cannot
-//! see broken are not decided by the share of relations like them that they do test. Each class's share of intent relations is estimated from this model's own
-//! evidence (expectation–maximisation over the two-hypothesis likelihood of
+//! see broken are not decided by the share of relations like them that they do test.
+//! Each class's share of intent relations is estimated from this model's own evidence
+//! (expectation–maximisation over the two-hypothesis likelihood of
 //! `noise::log_likelihood_ratio`), and becomes the prior odds every relation of the class
 //! is tested with. The share's prior is what the model says with no variations: the
 //! structural prior (`prior`) keeps or drops a relation by its class, and a class it keeps

@@ -121,7 +121,7 @@ impl Context<'_> {
                     .iter()
                     .map(|r| terms_change(r, &p.current, &self.input))
                     .collect();
-                change += projector.cost_of(projection, &terms);
+                change += projection.cost(&terms);
             }
         }
         Evidence {

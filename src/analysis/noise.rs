@@ -20,10 +20,10 @@
 //!
 //! `σ` is estimated from the variations themselves, over the relations they move, when
 //! they can tell it (`intent::informative`: some relation's residuals cancel most of its
-//! numbers' changes in every variation; where none does, `σ` stays at the floor and [`NoiseModel::told`]
-//! says so): the pooled variance of the relations
-//! whose statistic chance reaches in all but [`FALSE_REJECTION`] of intent ones (a
-//! one-sided test at [`INTENT_Z`]), iterated from a low start until that set stops changing.
+//! numbers' changes in every variation; where none does, `σ` stays at the floor and
+//! [`NoiseModel::told`] says so): the pooled variance of the relations whose statistic
+//! chance reaches in all but [`FALSE_REJECTION`] of intent ones (a one-sided test at
+//! [`INTENT_Z`]), iterated from a low start until that set stops changing.
 //! It never falls below `floor` (the model's float tolerance), so with exact variations
 //! exactly the relations some variation breaks are rejected, nor rises above a ceiling (a
 //! share of the model's size, `tolerance::NOISE_MAX_SHARE`): variations of one design are
@@ -146,8 +146,8 @@ impl NoiseModel {
     /// Bounding `s` by what the relation's own terms' changes could make of it
     /// (`Evidence::change`) instead of the model's size was measured and left out: on
     /// seeds 200..400 it gained 1.5 points of reach and lost 12 of dimension within d + 1
-    /// (README, "what the relation kinds can say"),
-    /// since most intent relations among small numbers then fall to their class's prior.
+    /// (README, "what the relation kinds can say"), since most intent relations among small
+    /// numbers then fall to their class's prior.
     /// Whether the variations could test a relation at all decides its class instead
     /// (`classes`).
     pub fn log_likelihood_ratio(&self, e: Evidence, size: f64) -> f64 {

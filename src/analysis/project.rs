@@ -647,24 +647,24 @@ impl Projector {
     }
 }
 
-impl Projector {
-    /// The cost [`Projector::shift_and_cost_at`] gives residuals `e` of the `projection`'s
-    /// rows (one per row, in their order), wherever they come from.
-    pub fn cost_of(&self, projection: &Projection, e: &[f64]) -> f64 {
-        if e.is_empty() {
-            return 0.0;
-        }
-        let e = DVector::from_column_slice(e);
-        e.dot(&(&projection.inverse * &e)).max(0.0)
-    }
-}
-
 /// A projection onto some rows prepared for any point (see [`Projector::projection`]).
 pub struct Projection {
     /// Per block the rows touch (by representative): the columns `K nᵢᵀ` over its slots.
     parts: Vec<(SlotId, Vec<Vec<f64>>)>,
     /// `(n K nᵀ)⁺`.
     inverse: DMatrix<f64>,
+}
+
+impl Projection {
+    /// The cost [`Projector::shift_and_cost_at`] gives residuals `e` of this projection's
+    /// rows (one per row, in their order), wherever they come from.
+    pub fn cost(&self, e: &[f64]) -> f64 {
+        if e.is_empty() {
+            return 0.0;
+        }
+        let e = DVector::from_column_slice(e);
+        e.dot(&(&self.inverse * &e)).max(0.0)
+    }
 }
 
 /// Projects `x` onto all of `rows` at once, weighting faces at `x`.

@@ -88,7 +88,7 @@ pub struct Inspection {
     /// kinds too.
     #[serde(skip_serializing_if = "is_zero")]
     pub placement_count: usize,
-    /// Extents two, three or four times another: beyond the paper's kinds too.
+    /// Extents twice another (`proportion`): beyond the paper's kinds too.
     #[serde(skip_serializing_if = "is_zero")]
     pub proportion_count: usize,
     /// Pairs of features driven by the very same numbers (instances of one module or loop
