@@ -29,6 +29,7 @@ use crate::tolerance::RELATIVE_ROUNDOFF;
 use crate::variation::Uncertainty;
 /// Where a fitted model's uncertainty goes: `fitted.scad` → `fitted.json`.
 pub use crate::variation::uncertainty::sidecar_path;
+use rayon::prelude::*;
 use std::path::PathBuf;
 
 pub use crate::fit::{Progress, Step};
@@ -338,7 +339,7 @@ fn load_targets(
         }
         set = set.downsized(m);
     }
-    let targets: Vec<Target> = set.images.iter().map(Target::from_rgb).collect();
+    let targets: Vec<Target> = set.images.par_iter().map(Target::from_rgb).collect();
     for (t, f) in targets.iter().zip(&set.files) {
         if t.foreground() == 0 {
             messages.push(Message::Line(format!(

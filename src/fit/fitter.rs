@@ -11,6 +11,7 @@
 
 use super::best::Best;
 use super::loss::{LossSpec, Target};
+use super::memo::Memo;
 use super::optimize::{self, OptState, Optimizer, Space};
 use super::options::{
     FitOptions, GUARD_SWEEPS, HARD_SIGMA, MIN_LEVEL_SIDE, PROPORTIONS_POOLING, RELATIVE_FLOOR,
@@ -219,6 +220,10 @@ pub struct Fitter<'a> {
     scales: Vec<f64>,
     /// The damped optimiser each stage reruns with, if any.
     rerun: Option<Optimizer>,
+    /// The lighting refitted at recent points, and the judge's loss there (both depend on
+    /// the point alone; the schedule asks at the same point several times).
+    looks: Memo<Look>,
+    judged: Memo<ImageValues>,
 }
 
 /// Where a stage starts: its stage, its point and the number of its first round.
@@ -321,6 +326,8 @@ impl<'a> Fitter<'a> {
             max_level,
             drawable,
             guards,
+            looks: Memo::default(),
+            judged: Memo::default(),
         })
     }
 
@@ -374,7 +381,8 @@ impl<'a> Fitter<'a> {
         } else {
             self.opts.sigma.1
         };
-        self.image_loss(backend, 0, x, sigma, look, false)
+        self.judged
+            .get_or(x, || self.image_loss(backend, 0, x, sigma, look, false))
     }
 
     /// Offers `x` to `best` by [`Fitter::judge`] plus the regulariser (refitting `look` at `x`).
@@ -496,6 +504,11 @@ impl<'a> Fitter<'a> {
         if !self.opts.fit_shading {
             return;
         }
+        *look = self.looks.get_or(x, || self.fitted_look(backend, x, look));
+    }
+
+    /// Each view's shading and each item's albedo fitted to the targets at `x`.
+    fn fitted_look(&self, backend: &mut dyn Backend, x: &[f64], look: &Look) -> Look {
         let scene = self.problem.scene(x);
         let views: Vec<ViewPrep> = self
             .cameras
@@ -513,8 +526,10 @@ impl<'a> Fitter<'a> {
             DEFAULT_SHADE,
             self.opts.per_item_albedo,
         );
-        look.shades = fitted.shades;
-        look.albedo = fitted.albedo;
+        Look {
+            shades: fitted.shades,
+            albedo: fitted.albedo,
+        }
     }
 
     /// The regulariser `λ‖(x − anchor)/size‖²` and its gradient.

@@ -72,18 +72,8 @@ impl Target {
     /// common colour along the border; a pixel's coverage is how much of it the object
     /// covers, unmixed from the background ([`super::coverage`]).
     pub fn from_rgb(img: &Rgb) -> Target {
-        let background = border_colour(img);
         let grey = img.luminance();
-        let dist = |c: &[f32; 3]| {
-            (0..3)
-                .map(|k| (c[k] - background[k]).abs())
-                .fold(0.0f32, f32::max)
-        };
-        // How far border pixels stray from the background (its noise).
-        let mut border: Vec<f32> = border_pixels(img).iter().map(dist).collect();
-        border.sort_by(f32::total_cmp);
-        let noise = border.get(border.len() * 9 / 10).copied().unwrap_or(0.0);
-        let (lo, hi) = (FG_LO.max(3.0 * noise), FG_HI.max(6.0 * noise));
+        let (background, lo, hi) = foreground_thresholds(img);
         let (m, s) = super::coverage::unmix(img, background, lo, hi);
         let grey = grey
             .iter()
@@ -177,6 +167,40 @@ impl Target {
     }
 }
 
+/// A picture's background colour and the colour distances from it below which a pixel is
+/// background and above which it is foreground (raised above [`FG_LO`], [`FG_HI`] by the
+/// noise of the border's pixels).
+fn foreground_thresholds(img: &Rgb) -> ([f32; 3], f32, f32) {
+    let background = border_colour(img);
+    let mut border: Vec<f32> = border_pixels(img)
+        .iter()
+        .map(|c| colour_distance(c, &background))
+        .collect();
+    border.sort_by(f32::total_cmp);
+    let noise = border.get(border.len() * 9 / 10).copied().unwrap_or(0.0);
+    (background, FG_LO.max(3.0 * noise), FG_HI.max(6.0 * noise))
+}
+
+/// The largest difference of two colours' channels.
+fn colour_distance(a: &[f32; 3], b: &[f32; 3]) -> f32 {
+    (0..3).map(|k| (a[k] - b[k]).abs()).fold(0.0f32, f32::max)
+}
+
+/// A quick reading of a picture for comparing pictures with each other, not for fitting:
+/// each pixel's foreground share by its colour's distance from the background alone (no
+/// unmixing of edge pixels) and its grey level times that share.
+pub fn quick_channels(img: &Rgb) -> (Vec<f32>, Vec<f32>) {
+    let (background, lo, hi) = foreground_thresholds(img);
+    img.data
+        .iter()
+        .map(|c| {
+            let t = ((colour_distance(c, &background) - lo) / (hi - lo)).clamp(0.0, 1.0);
+            let m = t * t * (3.0 - 2.0 * t);
+            (m, m * (0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]))
+        })
+        .unzip()
+}
+
 fn border_pixels(img: &Rgb) -> Vec<[f32; 3]> {
     let (w, h) = (img.width, img.height);
     let mut border = Vec::new();
@@ -227,15 +251,56 @@ pub fn gaussian_kernel(sigma: f64) -> Vec<f32> {
     k.into_iter().map(|v| v as f32).collect()
 }
 
-/// `img − amount·blur(img)` with a separable Gaussian and zero padding.
+/// `img − amount·blur(img)` with a separable Gaussian and zero padding. The blur runs
+/// only on the rectangle within the kernel's reach of a non-zero pixel (a residual is zero
+/// wherever neither picture shows the object); outside it the blur is exactly zero.
 pub fn sharpen(img: &[f32], width: u32, height: u32, spec: &LossSpec) -> Vec<f32> {
+    let mut out = img.to_vec();
     if spec.sharpen == 0.0 {
-        return img.to_vec();
+        return out;
     }
     let kernel = gaussian_kernel(spec.blur);
-    let blurred = blur(img, width as usize, height as usize, &kernel);
+    let (w, h) = (width as usize, height as usize);
+    let Some([x0, y0, x1, y1]) = support(img, w, h, kernel.len() / 2) else {
+        return out;
+    };
+    let cw = x1 - x0;
+    let crop: Vec<f32> = (y0..y1)
+        .flat_map(|y| img[y * w + x0..y * w + x1].iter().copied())
+        .collect();
+    let blurred = blur(&crop, cw, y1 - y0, &kernel);
     let a = spec.sharpen as f32;
-    img.iter().zip(&blurred).map(|(v, b)| v - a * b).collect()
+    for (y, row) in blurred.chunks(cw).enumerate() {
+        let dst = &mut out[(y0 + y) * w + x0..(y0 + y) * w + x1];
+        for (v, b) in dst.iter_mut().zip(row) {
+            *v -= a * b;
+        }
+    }
+    out
+}
+
+/// The rectangle `[x0, y0, x1, y1)` of the non-zero pixels of a `w`×`h` image grown by
+/// `reach` on every side (clipped to the image); `None` when every pixel is zero.
+fn support(img: &[f32], w: usize, h: usize, reach: usize) -> Option<[usize; 4]> {
+    let mut rect: Option<[usize; 4]> = None;
+    for (y, row) in img.chunks(w).take(h).enumerate() {
+        let Some(first) = row.iter().position(|&v| v != 0.0) else {
+            continue;
+        };
+        let last = row.iter().rposition(|&v| v != 0.0).unwrap_or(first);
+        let r = rect.get_or_insert([first, y, last + 1, y + 1]);
+        r[0] = r[0].min(first);
+        r[2] = r[2].max(last + 1);
+        r[3] = y + 1;
+    }
+    rect.map(|[x0, y0, x1, y1]| {
+        [
+            x0.saturating_sub(reach),
+            y0.saturating_sub(reach),
+            (x1 + reach).min(w),
+            (y1 + reach).min(h),
+        ]
+    })
 }
 
 /// Separable convolution with zero padding.
@@ -474,6 +539,29 @@ mod tests {
                 assert_eq!(b.s[k], want * 0.5, "({x}, {y})");
             }
         }
+    }
+
+    #[test]
+    fn sharpening_only_near_the_object_equals_sharpening_everywhere() {
+        let (w, h) = (23usize, 17usize);
+        let mut img = vec![0.0f32; w * h];
+        for (i, v) in img.iter_mut().enumerate() {
+            let (x, y) = (i % w, i / w);
+            if (6..11).contains(&x) && (1..9).contains(&y) {
+                *v = ((i * 37) % 11) as f32 / 11.0 - 0.4;
+            }
+        }
+        let spec = LossSpec::default();
+        let kernel = gaussian_kernel(spec.blur);
+        let whole = blur(&img, w, h, &kernel);
+        let want: Vec<f32> = img.iter().zip(&whole).map(|(v, b)| v - 0.2 * b).collect();
+        assert_eq!(sharpen(&img, w as u32, h as u32, &spec), want);
+        // Twice, as the gradient does: the first sharpening's support has grown.
+        let again = sharpen(&want, w as u32, h as u32, &spec);
+        let whole2 = blur(&want, w, h, &kernel);
+        let want2: Vec<f32> = want.iter().zip(&whole2).map(|(v, b)| v - 0.2 * b).collect();
+        assert_eq!(again, want2);
+        assert_eq!(sharpen(&[0.0; 12], 4, 3, &spec), vec![0.0; 12]);
     }
 
     #[test]

@@ -23,7 +23,8 @@
 //! [`loss`] the image loss; [`coverage`] pictures read as coverage; [`optimize`]
 //! the update rules and the spaces they move in; [`stages`], [`proportions`], [`albedo`],
 //! [`polish`], [`frame`] the pieces named above; [`targets`] reads target folders; [`uncertainty`] the
-//! numbers' Fisher information at the fit's point.
+//! numbers' Fisher information at the fit's point; [`memo`] keeps the lighting and the
+//! judge's loss at recent points, so asking again at one does not render again.
 //!
 //! Layering: `fit` drives the renderer (`render`) and reads the analysis' relations; the
 //! renderer knows nothing of it.
@@ -34,6 +35,7 @@ pub mod coverage;
 pub mod fitter;
 pub mod frame;
 pub mod loss;
+pub mod memo;
 pub mod optimize;
 pub mod options;
 pub mod parametric;

@@ -116,16 +116,6 @@ impl HardImage {
     }
 }
 
-/// One row of a view: coverage, shade, item, normal, depth, entries.
-type Row = (
-    Vec<f32>,
-    Vec<f32>,
-    Vec<i32>,
-    Vec<[f32; 3]>,
-    Vec<f32>,
-    Entries,
-);
-
 /// Renders one view: soft channels (hard edges when `sigma` is `None`), the hard surface,
 /// and (when asked) the gradient entries.
 pub fn render_view(
@@ -142,7 +132,57 @@ pub fn render_view(
         sigma,
         shade,
     };
-    // The span of each row that some item touches; the rest is background.
+    let span = row_spans(prep, w, h);
+    let npx = (w * h) as usize;
+    let mut soft = SoftImage {
+        width: w,
+        height: h,
+        m: vec![0.0; npx],
+        s: vec![0.0; npx],
+    };
+    let mut hard = HardImage {
+        width: w,
+        height: h,
+        item: vec![-1; npx],
+        normal: vec![[0.0; 3]; npx],
+        depth: vec![f32::INFINITY; npx],
+    };
+    let n = w as usize;
+    // Each row writes its own slices of the images; entries are gathered in row order.
+    let rows: Vec<Entries> = soft
+        .m
+        .par_chunks_mut(n)
+        .zip(soft.s.par_chunks_mut(n))
+        .zip(hard.item.par_chunks_mut(n))
+        .zip(hard.normal.par_chunks_mut(n))
+        .zip(hard.depth.par_chunks_mut(n))
+        .enumerate()
+        .map(|(y, ((((m, s), item), normal), depth))| {
+            let mut entries = Entries::default();
+            let mut scratch = Scratch::default();
+            let y = y as u32;
+            let (x0, x1) = span[y as usize];
+            for x in x0..x1 {
+                let out = ctx.pixel(x, y, &mut scratch, want_entries.then_some(&mut entries));
+                let i = x as usize;
+                m[i] = out.m as f32;
+                s[i] = out.s as f32;
+                item[i] = out.item;
+                normal[i] = out.normal.as_vec3().to_array();
+                depth[i] = out.depth as f32;
+            }
+            entries
+        })
+        .collect();
+    let mut entries = Entries::default();
+    for e in rows {
+        entries.extend(e);
+    }
+    (soft, hard, entries)
+}
+
+/// The span `[x0, x1)` of each row that some item touches; the rest is background.
+fn row_spans(prep: &ViewPrep, w: u32, h: u32) -> Vec<(u32, u32)> {
     let mut span = vec![(w, 0u32); h as usize];
     for r in prep.rects.iter().flatten() {
         for y in r[1]..r[3] {
@@ -151,54 +191,5 @@ pub fn render_view(
             sp.1 = sp.1.max(r[2]);
         }
     }
-    let rows: Vec<Row> = (0..h)
-        .into_par_iter()
-        .map(|y| {
-            let n = w as usize;
-            let mut m = vec![0.0f32; n];
-            let mut s = vec![0.0f32; n];
-            let mut item = vec![-1i32; n];
-            let mut normal = vec![[0.0f32; 3]; n];
-            let mut depth = vec![f32::INFINITY; n];
-            let mut entries = Entries::default();
-            let mut scratch = Scratch::default();
-            let (x0, x1) = span[y as usize];
-            {
-                for x in x0..x1 {
-                    let out = ctx.pixel(x, y, &mut scratch, want_entries.then_some(&mut entries));
-                    let i = x as usize;
-                    m[i] = out.m as f32;
-                    s[i] = out.s as f32;
-                    item[i] = out.item;
-                    normal[i] = out.normal.as_vec3().to_array();
-                    depth[i] = out.depth as f32;
-                }
-            }
-            (m, s, item, normal, depth, entries)
-        })
-        .collect();
-    let npx = (w * h) as usize;
-    let mut soft = SoftImage {
-        width: w,
-        height: h,
-        m: Vec::with_capacity(npx),
-        s: Vec::with_capacity(npx),
-    };
-    let mut hard = HardImage {
-        width: w,
-        height: h,
-        item: Vec::with_capacity(npx),
-        normal: Vec::with_capacity(npx),
-        depth: Vec::with_capacity(npx),
-    };
-    let mut entries = Entries::default();
-    for (m, s, item, normal, depth, e) in rows {
-        soft.m.extend(m);
-        soft.s.extend(s);
-        hard.item.extend(item);
-        hard.normal.extend(normal);
-        hard.depth.extend(depth);
-        entries.extend(e);
-    }
-    (soft, hard, entries)
+    span
 }
