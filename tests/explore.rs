@@ -359,7 +359,7 @@ fn walk(dir: &Path) -> Vec<PathBuf> {
 }
 
 #[test]
-fn three_prompts_each_move_towards_their_own_kind() {
+fn three_prompts_each_recover_their_own_kind() {
     let targets = [
         ("bench", bench()),
         ("stool", legs_and_back(40, 25)),
@@ -371,35 +371,57 @@ fn three_prompts_each_move_towards_their_own_kind() {
         .collect();
     let srv = start_for(models.clone(), Mode::Good);
     let dir = folder("three");
-    let mut args = vec!["--rounds", "3"];
+    let mut args = vec!["--rounds", "30"];
     for (k, _) in &targets {
         args.extend(["--prompt", k]);
     }
     let out = explore(&dir, &[&srv], &args);
     assert!(out.status.success(), "{}", stderr(&out));
+    // Thirty rounds at 64 pixels (the default is 400 at 256): each variation is recovered,
+    // IoU ≥ 0.9 with its hidden kind (the chair starts at 0.33, 0.76 and 0.75).
     let chair = model_of("chair.scad", CHAIR);
-    let (mut before, mut after) = (0.0, 0.0);
     for ((kind, target), name) in models.iter().zip(["bench", "stool", "bar_stool"]) {
         let text = std::fs::read_to_string(dir.join(format!("run/{name}.scad"))).unwrap();
-        assert_ne!(text, CHAIR, "{kind} did not move");
         let (b, a) = (
             iou_of(&chair, target),
             iou_of(&model_of("v.scad", &text), target),
         );
         eprintln!("{kind}: IoU {b:.3} -> {a:.3}");
-        before += b / 3.0;
-        after += a / 3.0;
+        assert!(a >= 0.9, "{kind}: IoU {b:.3} -> {a:.3}");
     }
-    // Three rounds at 64 pixels: the bench (the farthest) closes most of its gap, the
-    // stool a little, the bar stool's legs not yet (their tops leave the seat first); on
-    // the whole the variations are nearer their kinds than the chair is.
-    assert!(after > before + 0.05, "mean IoU {before:.3} -> {after:.3}");
     let presets: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("chair_param.json")).unwrap())
             .unwrap();
     let sets = presets["parameterSets"].as_object().unwrap();
-    for name in ["bench", "stool", "bar_stool"] {
+    for ((kind, target), name) in models.iter().zip(["bench", "stool", "bar_stool"]) {
         assert!(sets.contains_key(name), "{presets}");
+        // Presets stand where the input stands (centred, on its floor): compared so.
+        let preset = preset_model(&dir, name);
+        let (a, b) = (
+            common::anchored(&preset.parts),
+            common::anchored(&target.parts),
+        );
+        let reached = iou((&a, &preset.csg), (&b, &target.csg));
+        eprintln!("{kind}: preset IoU {reached:.3}");
+        // Issue 19 asks 0.95; measured 0.844, 0.917, 0.897 (README). This holds the
+        // presets to what they reach now, so that a change that loses them fails.
+        assert!(reached >= 0.8, "{kind}: preset IoU {reached:.3}");
     }
     std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// The output's preset `name` as OpenSCAD evaluates it (its `.csg` export, loaded).
+fn preset_model(dir: &Path, name: &str) -> Model {
+    let csg = dir.join(format!("preset_{name}.csg"));
+    let out = Command::new("openscad")
+        .arg("-o")
+        .arg(&csg)
+        .arg(dir.join("chair_param.scad"))
+        .arg("-p")
+        .arg(dir.join("chair_param.json"))
+        .args(["-P", name])
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", stderr(&out));
+    model_of("preset.csg", &std::fs::read_to_string(&csg).unwrap())
 }

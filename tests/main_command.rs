@@ -226,29 +226,6 @@ fn random_settings_keep_relations_other_models() {
     random_settings(&repo().join("examples/stool.scad"), &[], 25, 13);
 }
 
-/// Parts moved rigidly so their bounding box has its centre (x, y) and floor (z) at 0.
-fn anchored(parts: &[Part]) -> Vec<Part> {
-    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
-    for p in parts {
-        let (l, h) = p.world_bounds();
-        for a in 0..3 {
-            lo[a] = lo[a].min(l[a]);
-            hi[a] = hi[a].max(h[a]);
-        }
-    }
-    let shift = [-(lo[0] + hi[0]) / 2.0, -(lo[1] + hi[1]) / 2.0, -lo[2]];
-    parts
-        .iter()
-        .map(|p| {
-            let mut q = p.clone();
-            for (a, d) in shift.iter().enumerate() {
-                q.world.m[a][3] = reparamc::ir::Num::constant(p.world.m[a][3].value + d);
-            }
-            q
-        })
-        .collect()
-}
-
 fn union_of(n: usize) -> CsgNode {
     CsgNode::Union((0..n).map(CsgNode::Part).collect())
 }

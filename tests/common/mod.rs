@@ -307,3 +307,26 @@ impl Rng {
         (self.0 >> 11) as f64 / (1u64 << 53) as f64
     }
 }
+
+/// Parts moved rigidly so their bounding box has its centre (x, y) and floor (z) at 0.
+pub fn anchored(parts: &[Part]) -> Vec<Part> {
+    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+    for p in parts {
+        let (l, h) = p.world_bounds();
+        for a in 0..3 {
+            lo[a] = lo[a].min(l[a]);
+            hi[a] = hi[a].max(h[a]);
+        }
+    }
+    let shift = [-(lo[0] + hi[0]) / 2.0, -(lo[1] + hi[1]) / 2.0, -lo[2]];
+    parts
+        .iter()
+        .map(|p| {
+            let mut q = p.clone();
+            for (a, d) in shift.iter().enumerate() {
+                q.world.m[a][3] = reparamc::ir::Num::constant(p.world.m[a][3].value + d);
+            }
+            q
+        })
+        .collect()
+}
