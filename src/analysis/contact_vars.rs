@@ -15,6 +15,9 @@
 //! stay positive over the new box, which can cut a preset off: [`keep_contacts`] keeps a
 //! change of basis only when the new box holds as many of the input and the presets.
 //!
+//! A variable the contacts pin (its range no wider than the slack, a part held from both
+//! sides) is no slider: [`fix_pinned`] fixes it at its input value.
+//!
 //! Invariants: a replaced variable is not already a contact variable; the substitution
 //! keeps every slot's expression exact (coefficients are read back as small fractions like
 //! the solve's); one side is made a variable per call; the box [`keep_contacts`] returns
@@ -85,6 +88,30 @@ pub fn keep_contacts(
         } else {
             refused.push(side);
         }
+    }
+}
+
+/// Holds for good each free variable the kept contacts pin: one whose range, shrunk so no
+/// setting parts two parts in contact, is no wider than the slack the contacts are kept
+/// with on either side (`2·slack`). No slider can move it by more than the tolerance the
+/// model is compared at, so it is an equality the contacts imply (two parts that touch
+/// from both sides along an axis), not a slider: it is fixed at its input value and the
+/// box is taken again, until no variable is pinned.
+pub fn fix_pinned(
+    sol: &mut Solution,
+    slack: f64,
+    current: Boxed,
+    box_of: &mut dyn FnMut(&Solution) -> Boxed,
+) -> Boxed {
+    let mut current = current;
+    loop {
+        let (input, _, ranges) = &current;
+        let pinned = ranges.iter().position(|r| r.max - r.min <= 2.0 * slack);
+        let Some(j) = pinned else {
+            return current;
+        };
+        sol.fix_free(j, input[j]);
+        current = box_of(sol);
     }
 }
 
@@ -199,6 +226,50 @@ mod tests {
     use crate::analysis::ranges::ranges;
     use crate::analysis::reparam::solve;
     use crate::ir::feature::world_intervals;
+
+    /// A variable whose range is within twice the slack is fixed at its input value and the
+    /// box taken again; one wider is left a slider.
+    #[test]
+    fn a_variable_the_contacts_pin_is_fixed() {
+        let var = |i: usize| crate::analysis::reparam::Expression {
+            constant: 0.0,
+            terms: vec![(i, 1.0)],
+        };
+        let mut sol = Solution {
+            free: vec![0, 1, 2],
+            exprs: vec![var(0), var(1), var(2)],
+            anchors: 0,
+            contacts: Vec::new(),
+        };
+        let slack = 0.01;
+        // Variable 1 (at 3.0) may move by 0.015 in all: pinned. The others are sliders.
+        let mut box_of = |sol: &Solution| {
+            let input = sol.free_values(&[1.0, 3.0, 5.0]);
+            let ranges = sol
+                .free
+                .iter()
+                .map(|&f| match f {
+                    1 => Range {
+                        min: 2.995,
+                        max: 3.01,
+                        step: 0.001,
+                    },
+                    _ => Range {
+                        min: 0.0,
+                        max: 10.0,
+                        step: 0.1,
+                    },
+                })
+                .collect();
+            (input, Vec::new(), ranges)
+        };
+        let start = box_of(&sol);
+        let (input, _, ranges) = fix_pinned(&mut sol, slack, start, &mut box_of);
+        assert_eq!(sol.free, vec![0, 2]);
+        assert_eq!(input, vec![1.0, 5.0]);
+        assert_eq!(ranges.len(), 2);
+        assert_eq!(sol.slot_values(&[1.0, 5.0]), vec![1.0, 3.0, 5.0]);
+    }
 
     /// A top sunk 1 unit into a leg, no relation kept between the leg's height and the
     /// top's place, and a variation with both 20 higher: a box holding the input and the

@@ -114,6 +114,31 @@ impl Solution {
     pub fn contact(&self, i: usize) -> Option<&ContactVariable> {
         self.contacts.iter().find(|c| c.index == i)
     }
+
+    /// Free variable `j` held at `value` for good: its terms become constants, it leaves
+    /// the free variables (a slot it was becomes that constant), and the later ones move
+    /// down by one. Every slot's value at the other variables is what it was with `j` at
+    /// `value`.
+    pub fn fix_free(&mut self, j: usize, value: f64) {
+        for e in &mut self.exprs {
+            if let Some(&(_, a)) = e.terms.iter().find(|&&(i, _)| i == j) {
+                e.constant += a * value;
+            }
+            e.terms.retain(|&(i, _)| i != j);
+            for (i, _) in &mut e.terms {
+                if *i > j {
+                    *i -= 1;
+                }
+            }
+        }
+        self.free.remove(j);
+        self.contacts.retain(|c| c.index != j);
+        for c in &mut self.contacts {
+            if c.index > j {
+                c.index -= 1;
+            }
+        }
+    }
 }
 
 /// Column order: least wanted as a free variable first.
@@ -320,7 +345,44 @@ pub fn solve(model: &Model, anchors: &Anchors, rows: &[Affine]) -> Solution {
 
 #[cfg(test)]
 mod tests {
-    use super::Frac;
+    use super::{ContactVariable, Expression, Frac, Solution};
+    use crate::ir::Affine;
+
+    /// Fixing a free variable leaves every slot where it was with that variable at the
+    /// value it is fixed at, and the later variables (a contact variable among them) move
+    /// down by one.
+    #[test]
+    fn a_fixed_variable_becomes_a_constant() {
+        let var = |i: usize| Expression {
+            constant: 0.0,
+            terms: vec![(i, 1.0)],
+        };
+        let mut sol = Solution {
+            free: vec![0, 1, 2],
+            exprs: vec![
+                var(0),
+                var(1),
+                var(2),
+                Expression {
+                    constant: 1.0,
+                    terms: vec![(0, 2.0), (1, 3.0), (2, -1.0)],
+                },
+            ],
+            anchors: 0,
+            contacts: vec![ContactVariable {
+                index: 2,
+                parts: [0, 1],
+                axis: 0,
+                form: Affine::constant(0.0),
+            }],
+        };
+        let before = sol.slot_values(&[4.0, 5.0, 6.0]);
+        sol.fix_free(1, 5.0);
+        assert_eq!(sol.free, vec![0, 2]);
+        assert_eq!(sol.slot_values(&[4.0, 6.0]), before);
+        assert_eq!(sol.contacts[0].index, 1);
+        assert!(sol.exprs[1].terms.is_empty());
+    }
 
     #[test]
     fn fractions_are_recovered() {

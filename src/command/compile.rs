@@ -11,7 +11,7 @@ use super::pictures::{Progress, pictures};
 use crate::analysis::anchors::{Anchors, project_variations_keeping};
 use crate::analysis::candidates::{Candidate, Candidates};
 use crate::analysis::classes::sigmoid;
-use crate::analysis::contact_vars::keep_contacts;
+use crate::analysis::contact_vars::{fix_pinned, keep_contacts};
 use crate::analysis::contacts::common_contacts;
 use crate::analysis::cutoff::{Cutoff, change_points};
 use crate::analysis::details::pin_details;
@@ -239,12 +239,14 @@ pub fn reparameterize_telling(
     let projected =
         project_variations_keeping(&anchors, &faces, &rows, &values, &optional, &contacts, eps);
     // Emit: sliders, blends and switches, the file and its presets.
+    let mut box_of = |sol: &Solution| {
+        let (input_free, variation_free) = free_values(model, sol, &projected);
+        let r = ranges(model, sol, &input_free, &variation_free, &contacts, eps);
+        (input_free, variation_free, r)
+    };
+    let boxed = keep_contacts(model, &mut solution, &contacts, eps, &mut box_of);
     let (input_free, mut variation_free, slider_ranges) =
-        keep_contacts(model, &mut solution, &contacts, eps, &mut |sol| {
-            let (input_free, variation_free) = free_values(model, sol, &projected);
-            let r = ranges(model, sol, &input_free, &variation_free, &contacts, eps);
-            (input_free, variation_free, r)
-        });
+        fix_pinned(&mut solution, eps, boxed, &mut box_of);
     // Presets are the projected variations inside the ranges: every size positive and
     // every kept contact closed there too.
     for v in &mut variation_free {
