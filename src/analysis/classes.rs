@@ -88,10 +88,8 @@ pub fn prior_log_odds(
                 .or_insert(next)
         })
         .collect();
-    let llr: Vec<f64> = evidence
-        .iter()
-        .map(|&e| noise.log_likelihood_ratio(e, size))
-        .collect();
+    let ratio = noise.likelihood_ratio(size);
+    let llr: Vec<f64> = evidence.iter().map(|&e| ratio.of(e)).collect();
     // The structural prior's share of each class (it decides by class: 0 or 1).
     let mut kept = vec![0.0; index.len()];
     let mut members = vec![0.0; index.len()];

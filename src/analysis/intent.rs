@@ -23,7 +23,7 @@ use super::candidates::Candidates;
 use super::chosen::{Chosen, candidates_by_slot, forget, rows_of};
 use super::classes::prior_log_odds;
 use super::discover::{Sample, Similarity, fidelity};
-use super::noise::{Evidence, NoiseModel, figures};
+use super::noise::{Evidence, LikelihoodRatio, NoiseModel, figures};
 use super::pool::Pool;
 use super::project::{Faces, Projection, Projector};
 use crate::ir::{Affine, Model};
@@ -132,10 +132,28 @@ impl Context<'_> {
     }
 }
 
-/// The scores kept between steps: each candidate's evidence, and the step it was scored at.
+/// The scores kept between steps: each candidate's evidence, the step it was scored at,
+/// and its log odds with the evidence they were worked out from.
 struct Scores {
     evidence: Vec<Option<Evidence>>,
     scored_at: Vec<usize>,
+    odds: Vec<Option<(Evidence, f64)>>,
+}
+
+impl Scores {
+    /// Candidate `c`'s log posterior odds at its evidence (`None` without evidence),
+    /// worked out again only when the evidence changed.
+    fn odds(&mut self, cx: &Context<'_>, ratio: &LikelihoodRatio, c: usize) -> Option<f64> {
+        let e = self.evidence[c]?;
+        match self.odds[c] {
+            Some((seen, odds)) if seen == e => Some(odds),
+            _ => {
+                let odds = log_odds(cx, ratio, c, e);
+                self.odds[c] = Some((e, odds));
+                Some(odds)
+            }
+        }
+    }
 }
 
 /// The evidence that can tell the noise. A relation whose slots every variation leaves at
@@ -272,6 +290,7 @@ pub fn select<S: Similarity>(
     let pooled = informative(&cx, &cx.input, samples, &all);
     let noise = NoiseModel::estimate(&pooled, floor, ceiling);
     cx.prior = prior_log_odds(model, candidates, &all, &noise, cx.size);
+    let ratio = noise.likelihood_ratio(cx.size);
     let mut out = Selection {
         order: Vec::new(),
         z: Vec::new(),
@@ -310,8 +329,14 @@ pub fn select<S: Similarity>(
                 projectors: &mut projectors,
                 chosen: &mut chosen,
             };
-            let Some((c, odds, z)) = best(&cx, &noise, &mut pool, &mut state, &mut scores, at)
-            else {
+            let Some((c, odds, z)) = best(
+                &cx,
+                (&noise, &ratio),
+                &mut pool,
+                &mut state,
+                &mut scores,
+                at,
+            ) else {
                 break;
             };
             if odds <= 0.0 && cut.is_none() {
@@ -360,6 +385,7 @@ fn first_scores<R>(
     let mut scores = Scores {
         evidence: vec![None; n],
         scored_at: vec![0; n],
+        odds: vec![None; n],
     };
     for c in (0..n).filter(|&c| pool.is_alive(c)) {
         scores.evidence[c] = Some(cx.evidence(c, points, projectors, chosen));
@@ -454,7 +480,7 @@ fn context<'a>(faces: &'a Faces, candidates: &'a Candidates, samples: &[Sample])
 /// differ by round-off, [`RELATIVE_ROUNDOFF`] of their size, being equal).
 fn best<R>(
     cx: &Context<'_>,
-    noise: &NoiseModel,
+    (noise, ratio): (&NoiseModel, &LikelihoodRatio),
     pool: &mut Pool,
     state: &mut State<'_, '_, R>,
     scores: &mut Scores,
@@ -472,7 +498,7 @@ fn best<R>(
     loop {
         let scored: Vec<(usize, f64)> = alive
             .iter()
-            .filter_map(|&c| Some((c, log_odds(cx, noise, c, scores.evidence[c]?))))
+            .filter_map(|&c| Some((c, scores.odds(cx, ratio, c)?)))
             .collect();
         let top = scored
             .iter()
@@ -499,8 +525,8 @@ fn best<R>(
 /// The log posterior odds that candidate `c` with evidence `e` is intent: its class's prior
 /// odds plus the evidence's likelihood ratio (the prior alone when no variation has both
 /// its parts).
-fn log_odds(cx: &Context<'_>, noise: &NoiseModel, c: usize, e: Evidence) -> f64 {
-    cx.prior[c] + noise.log_likelihood_ratio(e, cx.size)
+fn log_odds(cx: &Context<'_>, ratio: &LikelihoodRatio, c: usize, e: Evidence) -> f64 {
+    cx.prior[c] + ratio.of(e)
 }
 
 /// What a step changes: the variations' points, their projectors and the chosen rows.

@@ -88,6 +88,34 @@ pub struct NoiseModel {
     pub told: bool,
 }
 
+/// The log-likelihood ratio of a relation's evidence between intent and broken for one
+/// noise model and model size: each variance's `(ln 2πv, 2v)`, the noise's alone and the
+/// log-uniform grid of broken scales (see [`NoiseModel::log_likelihood_ratio`]).
+#[derive(Debug, Clone)]
+pub struct LikelihoodRatio {
+    intent: (f64, f64),
+    broken: [(f64, f64); SCALE_GRID],
+}
+
+impl LikelihoodRatio {
+    /// The log-likelihood ratio of `e`: positive when the noise explains it better, 0 when
+    /// nothing is seen.
+    pub fn of(&self, e: Evidence) -> f64 {
+        if e.dof == 0 {
+            return 0.0;
+        }
+        let k = e.dof as f64;
+        let log_normal = |(ln_two_pi_v, two_v): (f64, f64)| -0.5 * k * ln_two_pi_v - e.cost / two_v;
+        let mut broken = [0.0; SCALE_GRID];
+        for (l, &v) in broken.iter_mut().zip(&self.broken) {
+            *l = log_normal(v);
+        }
+        let top = broken.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        let mean = broken.iter().map(|l| (l - top).exp()).sum::<f64>() / SCALE_GRID as f64;
+        log_normal(self.intent) - (top + mean.ln())
+    }
+}
+
 /// The Wilson–Hilferty normal form of a χ² statistic `x` with `dof` degrees of freedom:
 /// approximately standard normal under the null hypothesis (exact enough for a test at
 /// three standard deviations from one degree of freedom on).
@@ -151,23 +179,24 @@ impl NoiseModel {
     /// Whether the variations could test a relation at all decides its class instead
     /// (`classes`).
     pub fn log_likelihood_ratio(&self, e: Evidence, size: f64) -> f64 {
-        if e.dof == 0 {
-            return 0.0;
-        }
-        let k = e.dof as f64;
-        let log_normal =
-            |v: f64| -0.5 * k * (2.0 * std::f64::consts::PI * v).ln() - e.cost / (2.0 * v);
+        self.likelihood_ratio(size).of(e)
+    }
+
+    /// [`NoiseModel::log_likelihood_ratio`] for a model of size `size`, its grid of
+    /// broken scales worked out once for the many relations it will weigh.
+    pub fn likelihood_ratio(&self, size: f64) -> LikelihoodRatio {
         let noise = self.sigma * self.sigma;
         let (lo, hi) = (self.sigma.ln(), size.max(self.sigma).ln());
-        let broken: Vec<f64> = (0..SCALE_GRID)
-            .map(|j| {
-                let u = lo + (hi - lo) * (j as f64 + 0.5) / SCALE_GRID as f64;
-                log_normal(noise + (2.0 * u).exp())
-            })
-            .collect();
-        let top = broken.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-        let mean = broken.iter().map(|l| (l - top).exp()).sum::<f64>() / SCALE_GRID as f64;
-        log_normal(noise) - (top + mean.ln())
+        let term = |v: f64| ((2.0 * std::f64::consts::PI * v).ln(), 2.0 * v);
+        let mut broken = [(0.0, 0.0); SCALE_GRID];
+        for (j, b) in broken.iter_mut().enumerate() {
+            let u = lo + (hi - lo) * (j as f64 + 0.5) / SCALE_GRID as f64;
+            *b = term(noise + (2.0 * u).exp());
+        }
+        LikelihoodRatio {
+            intent: term(noise),
+            broken,
+        }
     }
 
     /// The noise of the variations whose relations' evidence is `evidence`, never below
