@@ -10,7 +10,7 @@
 
 use super::candidates::Candidates;
 use super::pool::Pool;
-use super::project::{Faces, Projection, Projector};
+use super::project::{Faces, Projection, Projector, RowCosts};
 use super::rowbasis::RowBasis;
 use super::slotblocks::SlotBlocks;
 use crate::ir::{Affine, SlotId};
@@ -90,6 +90,17 @@ impl Chosen {
         rows: &[&Affine],
     ) -> Projection {
         projector.projection(faces, &self.basis, &mut self.blocks, &self.members, rows)
+    }
+
+    /// What projecting any point onto `rows` with `projector` costs, without the move (see
+    /// [`Projector::costs`]).
+    pub fn costs(
+        &mut self,
+        projector: &mut Projector,
+        faces: &Faces,
+        rows: &[&Affine],
+    ) -> RowCosts {
+        projector.costs(faces, &self.basis, &mut self.blocks, &self.members, rows)
     }
 
     /// Whether the chosen rows imply every one of `rows`.

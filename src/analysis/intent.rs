@@ -25,7 +25,7 @@ use super::classes::prior_log_odds;
 use super::discover::{Sample, Similarity, fidelity};
 use super::noise::{Evidence, LikelihoodRatio, NoiseModel, figures};
 use super::pool::Pool;
-use super::project::{Faces, Projection, Projector};
+use super::project::{Faces, Projection, Projector, RowCosts};
 use crate::ir::{Affine, Model};
 use crate::tolerance::{NOISE_CANCELLATION_SHARE, NOISE_MAX_SHARE, RELATIVE_ROUNDOFF, Tolerance};
 
@@ -109,14 +109,14 @@ impl Context<'_> {
         chosen: &mut Chosen,
     ) -> Evidence {
         let rows = rows_of(self.candidates, c);
-        let mut made: Vec<Option<Projection>> = projectors.iter().map(|_| None).collect();
+        let mut made: Vec<Option<RowCosts>> = projectors.iter().map(|_| None).collect();
         let (mut cost, mut change) = (0.0, 0.0);
         for (p, &seen) in points.iter().zip(&self.seen[c]) {
             if seen {
                 let projector = &mut projectors[p.group];
-                let projection = made[p.group]
-                    .get_or_insert_with(|| chosen.projection(projector, self.faces, &rows));
-                cost += projector.shift_and_cost_at(projection, &p.current, &rows).1;
+                let projection =
+                    made[p.group].get_or_insert_with(|| chosen.costs(projector, self.faces, &rows));
+                cost += projection.cost_at(&p.current, &rows);
                 let terms: Vec<f64> = rows
                     .iter()
                     .map(|r| terms_change(r, &p.current, &self.input))

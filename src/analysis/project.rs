@@ -447,6 +447,27 @@ impl Block {
         col
     }
 
+    /// `a K bᵀ` for the parts of two rows inside the block, read off the dense `K` (and the
+    /// corrections not folded into it), when there is one: it needs `K` only at the rows'
+    /// own slots, where [`Block::dot`] of a column needs the whole column.
+    fn k_form(&self, k: &DMatrix<f64>, a: &Affine, b: &Affine) -> f64 {
+        let mut v = 0.0;
+        for &(s, x) in &a.terms {
+            let Some(&i) = self.index.get(&s) else {
+                continue;
+            };
+            for &(t, y) in &b.terms {
+                if let Some(&j) = self.index.get(&t) {
+                    v += x * y * k[(i, j)];
+                }
+            }
+        }
+        for (u, s) in &self.corrections {
+            v -= self.dot(a, u) * self.dot(b, u) / s;
+        }
+        v
+    }
+
     /// Takes `row` into `K` as a rank-one correction, folded into the dense `K` where there
     /// is one (a column then costs the row's terms, not one pass per correction).
     fn absorb(&mut self, row: &Affine) {
@@ -584,12 +605,37 @@ impl Projector {
         members: &HashMap<SlotId, Vec<SlotId>>,
         rows: &[&Affine],
     ) -> Projection {
-        if rows.is_empty() {
-            return Projection {
-                parts: Vec::new(),
-                inverse: DMatrix::zeros(0, 0),
-            };
-        }
+        let (costs, parts) = self.row_gram(faces, basis, blocks, members, rows, true);
+        Projection { parts, costs }
+    }
+
+    /// The costs of projecting onto `rows` without the move ([`Projector::projection`]'s
+    /// `(n K nᵀ)⁺` alone): where a block keeps a dense `K`, its share of `n K nᵀ` is read
+    /// at the rows' own slots, not through whole columns.
+    pub fn costs(
+        &mut self,
+        faces: &Faces,
+        basis: &RowBasis,
+        blocks: &mut SlotBlocks,
+        members: &HashMap<SlotId, Vec<SlotId>>,
+        rows: &[&Affine],
+    ) -> RowCosts {
+        self.row_gram(faces, basis, blocks, members, rows, false).0
+    }
+
+    /// `(n K nᵀ)⁺` for `rows`, and (when `columns`) per touched block the columns `K nᵢᵀ`.
+    fn row_gram(
+        &mut self,
+        faces: &Faces,
+        basis: &RowBasis,
+        blocks: &mut SlotBlocks,
+        members: &HashMap<SlotId, Vec<SlotId>>,
+        rows: &[&Affine],
+        columns: bool,
+    ) -> (RowCosts, BlockColumns) {
+        let k = rows.len();
+        let mut m = DMatrix::<f64>::zeros(k, k);
+        let mut parts: BlockColumns = Vec::new();
         let mut touched: Vec<SlotId> = rows
             .iter()
             .flat_map(|r| r.slots())
@@ -597,26 +643,40 @@ impl Projector {
             .collect();
         touched.sort_unstable();
         touched.dedup();
-        let k = rows.len();
-        let mut m = DMatrix::<f64>::zeros(k, k);
-        // Per touched block: the columns K nᵢᵀ over its slots.
-        let mut parts: Vec<(SlotId, Vec<Vec<f64>>)> = Vec::new();
         for &root in &touched {
             let block = self.blocks.entry(root).or_insert_with(|| {
                 Block::build(faces, &self.metric, basis, members[&root].clone())
             });
+            // Only a `K` already made is read (making one is the columns' decision).
+            let dense = block
+                .dense
+                .get()
+                .filter(|_| !columns && block.gram.is_some());
+            if let Some(dense) = dense {
+                for (i, a) in rows.iter().enumerate() {
+                    for (j, b) in rows.iter().enumerate() {
+                        m[(i, j)] += block.k_form(dense, a, b);
+                    }
+                }
+                continue;
+            }
+            // Per touched block: the columns K nᵢᵀ over its slots.
             let cols: Vec<Vec<f64>> = rows.iter().map(|r| block.k_column(r)).collect();
             for (i, r) in rows.iter().enumerate() {
                 for (j, col) in cols.iter().enumerate() {
                     m[(i, j)] += block.dot(r, col);
                 }
             }
-            parts.push((root, cols));
+            if columns {
+                parts.push((root, cols));
+            }
         }
-        Projection {
-            parts,
-            inverse: linalg::pinv(&m),
-        }
+        let inverse = if k == 0 {
+            DMatrix::zeros(0, 0)
+        } else {
+            linalg::pinv(&m)
+        };
+        (RowCosts { inverse }, parts)
     }
 
     /// [`Projector::shift_and_cost`] of `x` with the `projection` this projector made for
@@ -631,7 +691,7 @@ impl Projector {
             return (Vec::new(), 0.0);
         }
         let e = DVector::from_fn(rows.len(), |i, _| rows[i].eval(x));
-        let lambda = &projection.inverse * &e;
+        let lambda = &projection.costs.inverse * &e;
         let cost = e.dot(&lambda).max(0.0);
         let mut out = Vec::new();
         for (root, cols) in &projection.parts {
@@ -647,23 +707,45 @@ impl Projector {
     }
 }
 
+/// Per block some rows touch (by representative): the columns `K nᵢᵀ` over its slots.
+type BlockColumns = Vec<(SlotId, Vec<Vec<f64>>)>;
+
 /// A projection onto some rows prepared for any point (see [`Projector::projection`]).
 pub struct Projection {
-    /// Per block the rows touch (by representative): the columns `K nᵢᵀ` over its slots.
-    parts: Vec<(SlotId, Vec<Vec<f64>>)>,
-    /// `(n K nᵀ)⁺`.
-    inverse: DMatrix<f64>,
+    /// Per block the rows touch: the columns `K nᵢᵀ` over its slots.
+    parts: BlockColumns,
+    costs: RowCosts,
 }
 
 impl Projection {
     /// The cost [`Projector::shift_and_cost_at`] gives residuals `e` of this projection's
     /// rows (one per row, in their order), wherever they come from.
     pub fn cost(&self, e: &[f64]) -> f64 {
+        self.costs.cost(e)
+    }
+}
+
+/// What projecting onto some rows costs, whatever the point: `(n K nᵀ)⁺`.
+pub struct RowCosts {
+    inverse: DMatrix<f64>,
+}
+
+impl RowCosts {
+    /// The cost of projecting away residuals `e` of the rows (one per row, in their order):
+    /// `eᵀ (n K nᵀ)⁺ e`.
+    pub fn cost(&self, e: &[f64]) -> f64 {
         if e.is_empty() {
             return 0.0;
         }
         let e = DVector::from_column_slice(e);
         e.dot(&(&self.inverse * &e)).max(0.0)
+    }
+
+    /// The cost of projecting `x` onto `rows` (the rows these costs were made for):
+    /// [`Projector::shift_and_cost_at`]'s cost without the move.
+    pub fn cost_at(&self, x: &[f64], rows: &[&Affine]) -> f64 {
+        let e: Vec<f64> = rows.iter().map(|r| r.eval(x)).collect();
+        self.cost(&e)
     }
 }
 
@@ -727,108 +809,5 @@ pub fn project_onto(faces: &Faces, x: &[f64], rows: &[&Affine], skip: &[usize]) 
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// What projecting `x` onto `row` costs in `metric`.
-    fn cost(faces: &Faces, metric: Metric, x: &[f64], row: &Affine) -> f64 {
-        let basis = RowBasis::default();
-        let mut blocks = SlotBlocks::of(faces);
-        let members = blocks.members();
-        Projector::new(metric)
-            .shift_and_cost(faces, &basis, &mut blocks, &members, x, &[row])
-            .1
-    }
-
-    /// One number sizes five boards, another one board; a variation moves the first by one
-    /// unit, breaking "the two are equal" by one unit.
-    #[test]
-    fn a_typed_number_weighs_its_leverage_not_the_faces_it_drives() {
-        let m = crate::front::test_model(
-            "w = 30;\nv = 30;\n\
-             for (i = [0:4]) translate([i * 40, 0, 0]) cube([w, 10, 10]);\n\
-             translate([0, 50, 0]) cube([v, 10, 10]);\n",
-        );
-        let faces = Faces::of(&m);
-        let slot = |name: &str| {
-            m.slots
-                .iter()
-                .position(|s| s.name == name)
-                .unwrap_or_else(|| panic!("no slot {name}")) as SlotId
-        };
-        let (w, v) = (slot("w"), slot("v"));
-        let row = Affine {
-            constant: 0.0,
-            terms: vec![(w, 1.0), (v, -1.0)],
-        };
-        let mut x = m.slot_values();
-        x[w as usize] += 1.0;
-        // Typed: two numbers each off by noise of σ, so the residual's variance is 2σ² and
-        // its cost 1/2, however many boards `w` sizes (in the faces' metric, `w` would count
-        // once per board).
-        let typed = cost(&faces, faces.number_metric(&[]), &x, &row);
-        assert!((typed - 0.5).abs() < 1e-6, "{typed}");
-        // A variation without the five boards leaves `w` no leverage: moving it costs nothing.
-        let without: Vec<usize> = (0..5).collect();
-        let free = cost(&faces, faces.number_metric(&without), &x, &row);
-        assert!(free < 1e-6, "{free}");
-    }
-
-    /// A block serves the same columns `K nᵀ` whether it solves for each or reads them from
-    /// the dense `K` it makes once it has served as many as it has slots.
-    #[test]
-    fn dense_columns_are_the_solved_ones() {
-        let m = crate::front::test_model(
-            "for (i = [0:3]) translate([i * 12, 0, 0]) cube([10, 10 + i, 5]);\n\
-             translate([0, 0, 5]) cube([46, 14, 2]);\n",
-        );
-        let faces = Faces::of(&m);
-        let mut basis = RowBasis::default();
-        // One chosen row inside the block, so its null space is not the identity.
-        let (a, b) = (0 as SlotId, 1 as SlotId);
-        basis.add(&Affine {
-            constant: 0.0,
-            terms: vec![(a, 1.0), (b, -1.0)],
-        });
-        let slots: Vec<SlotId> = (0..m.slots.len() as SlotId).collect();
-        let metric = faces.metric(&m.slot_values(), &[]);
-        let block = Block::build(&faces, &metric, &basis, slots.clone());
-        let rows: Vec<Affine> = slots
-            .windows(2)
-            .map(|w| Affine {
-                constant: 0.0,
-                terms: vec![(w[0], 1.0), (w[1], -0.5)],
-            })
-            .collect();
-        let solved: Vec<Vec<f64>> = rows.iter().map(|r| block.k_column(r)).collect();
-        assert!(block.dense.get().is_none(), "fewer columns than slots");
-        for _ in 0..slots.len() {
-            block.k_column(&rows[0]);
-        }
-        assert!(
-            block.dense.get().is_some(),
-            "made once it has served enough"
-        );
-        let scale = solved.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
-        for (r, want) in rows.iter().zip(&solved) {
-            for (got, want) in block.k_column(r).iter().zip(want) {
-                assert!((got - want).abs() <= 1e-9 * scale, "{got} vs {want}");
-            }
-        }
-        // Rows absorbed afterwards: folded into the dense `K` here, kept as corrections in a
-        // block without one; both serve the same columns.
-        let mut block = block;
-        let mut sparse = Block::build(&faces, &metric, &basis, slots.clone());
-        for r in &rows[1..4] {
-            block.absorb(r);
-            sparse.absorb(r);
-        }
-        assert!(block.corrections.is_empty() && sparse.dense.get().is_none());
-        assert_eq!((block.absorbed, sparse.corrections.len()), (3, 3));
-        for r in &rows[4..] {
-            for (got, want) in block.k_column(r).iter().zip(sparse.k_column(r)) {
-                assert!((got - want).abs() <= 1e-9 * scale, "{got} vs {want}");
-            }
-        }
-    }
-}
+#[path = "tests_project.rs"]
+mod tests;
