@@ -18,7 +18,6 @@
 use super::discover::Similarity;
 use crate::ir::feature::world_intervals;
 use crate::ir::{Model, Part};
-use std::sync::OnceLock;
 
 /// Volume changed by removing a part, as a fraction of its own volume in the input, below
 /// which it is optional whatever the noise.
@@ -71,25 +70,23 @@ pub fn optional_parts<S: Similarity>(
     variations: &[Vec<f64>],
     sim: &S,
     sigma: f64,
-) -> Vec<Vec<usize>>
-where
-    S::Reference: Sync,
-{
+) -> Vec<Vec<usize>> {
     let x0 = model.slot_values();
     let input = sim.reference(&x0, &[]);
     let parts = model.parts.len();
     // What removing each part changes at the input: a cheap lower bound first, the exact
-    // loss only when the bound cannot answer (both worked out once, by whichever variation
-    // asks first).
-    let bound_at_input: Vec<OnceLock<f64>> = (0..parts).map(|_| OnceLock::new()).collect();
-    let shown: Vec<OnceLock<f64>> = (0..parts).map(|_| OnceLock::new()).collect();
-    let shows = |p: usize, past: &dyn Fn(f64) -> bool| -> bool {
-        let bound = *bound_at_input[p].get_or_init(|| sim.removal_loss_lower_bound(&input, p));
-        past(bound) || past(*shown[p].get_or_init(|| sim.removal_loss(&input, p)))
+    // loss only when the bound cannot answer (both cached over the variations).
+    let mut bound_at_input: Vec<Option<f64>> = vec![None; parts];
+    let mut shown: Vec<Option<f64>> = vec![None; parts];
+    let mut shows = |p: usize, past: &dyn Fn(f64) -> bool| -> bool {
+        let bound =
+            *bound_at_input[p].get_or_insert_with(|| sim.removal_loss_lower_bound(&input, p));
+        past(bound) || past(*shown[p].get_or_insert_with(|| sim.removal_loss(&input, p)))
     };
     let at_input: Vec<(f64, f64)> = model.parts.iter().map(|p| box_at(p, &x0)).collect();
     let eps = crate::tolerance::Tolerance::for_size(model.size()).epsilon;
-    let judge = |v: &Vec<f64>| -> Vec<usize> {
+    let mut out = Vec::with_capacity(variations.len());
+    for v in variations {
         let whole = sim.reference(v, &[]);
         let mut off = Vec::new();
         for (p, &(thickness, area)) in at_input.iter().enumerate() {
@@ -110,10 +107,9 @@ where
             }
             let loss = sim.removal_loss(&whole, p);
             let optional = if sigma <= 0.0 {
-                // Exact variations: a part is left out by a zero or hidden inside
-                // others, not by a size that only happens to draw nothing (a negative
-                // radius is a number the noise moved past zero, and the part is still
-                // meant).
+                // Exact variations: a part is left out by a zero or hidden inside others,
+                // not by a size that only happens to draw nothing (a negative radius is a
+                // number the noise moved past zero, and the part is still meant).
                 loss < OPTIONAL_THRESHOLD && !negative_sized(&model.parts[p], v, eps)
             } else {
                 loss < OPTIONAL_THRESHOLD
@@ -124,43 +120,9 @@ where
                 off.push(p);
             }
         }
-        off
-    };
-    in_parallel(variations, &judge)
-}
-
-/// `judge` of every variation, in order, the variations shared out over the machine's
-/// cores. Scoped threads of their own rather than rayon's pool: discovery runs inside
-/// callers that may be blocking a pool worker (a benchmark's families in parallel, each on
-/// a large-stack thread), where work handed to the pool would wait for ever.
-fn in_parallel<T: Sync, R: Send>(items: &[T], judge: &(dyn Fn(&T) -> R + Sync)) -> Vec<R> {
-    let threads = std::thread::available_parallelism()
-        .map_or(1, |n| n.get())
-        .min(items.len());
-    if threads <= 1 {
-        return items.iter().map(judge).collect();
+        out.push(off);
     }
-    let mut out: Vec<Option<R>> = (0..items.len()).map(|_| None).collect();
-    std::thread::scope(|scope| {
-        let workers: Vec<_> = (0..threads)
-            .map(|t| {
-                scope.spawn(move || {
-                    (t..items.len())
-                        .step_by(threads)
-                        .map(|i| (i, judge(&items[i])))
-                        .collect::<Vec<_>>()
-                })
-            })
-            .collect();
-        for w in workers {
-            // A judge that panicked panics here, as it would have without threads.
-            let judged = w.join().unwrap_or_else(|e| std::panic::resume_unwind(e));
-            for (i, r) in judged {
-                out[i] = Some(r);
-            }
-        }
-    });
-    out.into_iter().flatten().collect()
+    out
 }
 
 /// The variations' slot values with every slot that shapes only parts a variation does
@@ -231,14 +193,5 @@ mod tests {
                 },
             ]
         );
-    }
-
-    /// Variations judged in parallel come back in their own order, one result each.
-    #[test]
-    fn parallel_judging_keeps_the_order() {
-        let items: Vec<u64> = (0..11).collect();
-        let out = super::in_parallel(&items, &|&i| i * i);
-        assert_eq!(out, items.iter().map(|i| i * i).collect::<Vec<_>>());
-        assert!(super::in_parallel(&[] as &[u64], &|&i| i).is_empty());
     }
 }
