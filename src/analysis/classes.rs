@@ -10,7 +10,7 @@
 //! see broken are not decided by the share of relations like them that they do test.
 //! Each class's share of intent relations is estimated from this model's own evidence
 //! (expectation–maximisation over the two-hypothesis likelihood of
-//! `noise::log_likelihood_ratio`), and becomes the prior odds every relation of the class
+//! `noise::NoiseModel::likelihood_ratio`), and becomes the prior odds every relation of the class
 //! is tested with. The share's prior is what the model says with no variations: the
 //! structural prior (`prior`) keeps or drops a relation by its class, and a class it keeps
 //! starts from Beta(1.5, 0.5) (mean 3/4), one it drops from Beta(0.5, 1.5) — two relations'

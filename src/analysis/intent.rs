@@ -114,14 +114,14 @@ impl Context<'_> {
         for (p, &seen) in points.iter().zip(&self.seen[c]) {
             if seen {
                 let projector = &mut projectors[p.group];
-                let projection =
+                let costs =
                     made[p.group].get_or_insert_with(|| chosen.costs(projector, self.faces, &rows));
-                cost += projection.cost_at(&p.current, &rows);
+                cost += costs.cost_at(&p.current, &rows);
                 let terms: Vec<f64> = rows
                     .iter()
                     .map(|r| terms_change(r, &p.current, &self.input))
                     .collect();
-                change += projection.cost(&terms);
+                change += costs.cost(&terms);
             }
         }
         Evidence {

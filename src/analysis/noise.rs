@@ -15,7 +15,7 @@
 //! One decision rule follows, the same for every kind of object: a relation is intent when
 //! that is more likely than not, weighing the likelihood of its residuals under the noise
 //! against their likelihood when the variations changed it by any amount (a change of
-//! unknown scale: [`NoiseModel::log_likelihood_ratio`]), with the prior odds of its class
+//! unknown scale: [`NoiseModel::likelihood_ratio`]), with the prior odds of its class
 //! (`classes`). A χ² statistic in normal units ([`NoiseModel::z`]) is reported beside it.
 //!
 //! `σ` is estimated from the variations themselves, over the relations they move, when
@@ -90,7 +90,7 @@ pub struct NoiseModel {
 
 /// The log-likelihood ratio of a relation's evidence between intent and broken for one
 /// noise model and model size: each variance's `(ln 2πv, 2v)`, the noise's alone and the
-/// log-uniform grid of broken scales (see [`NoiseModel::log_likelihood_ratio`]).
+/// log-uniform grid of broken scales (see [`NoiseModel::likelihood_ratio`]).
 #[derive(Debug, Clone)]
 pub struct LikelihoodRatio {
     intent: (f64, f64),
@@ -166,8 +166,8 @@ impl NoiseModel {
         self.z(e) <= self.critical_z
     }
 
-    /// The log-likelihood ratio of `e` between "intent" (its residuals are the noise) and
-    /// "broken" (the variations changed it by a residual of unknown scale `s`, anywhere from
+    /// The log-likelihood ratio of a relation's evidence between "intent" (its residuals are
+    /// the noise) and "broken" (the variations changed it by a residual of unknown scale `s`, anywhere from
     /// the noise to the model's `size` with no scale preferred — log-uniform — plus the
     /// noise). Positive when the noise explains `e` better; 0 when nothing is seen.
     ///
@@ -178,12 +178,9 @@ impl NoiseModel {
     /// numbers then fall to their class's prior.
     /// Whether the variations could test a relation at all decides its class instead
     /// (`classes`).
-    pub fn log_likelihood_ratio(&self, e: Evidence, size: f64) -> f64 {
-        self.likelihood_ratio(size).of(e)
-    }
-
-    /// [`NoiseModel::log_likelihood_ratio`] for a model of size `size`, its grid of
-    /// broken scales worked out once for the many relations it will weigh.
+    ///
+    /// The ratio is made for a model of size `size`, its grid of broken scales worked out
+    /// once for the many relations it will weigh ([`LikelihoodRatio::of`]).
     pub fn likelihood_ratio(&self, size: f64) -> LikelihoodRatio {
         let noise = self.sigma * self.sigma;
         let (lo, hi) = (self.sigma.ln(), size.max(self.sigma).ln());
@@ -369,11 +366,12 @@ mod tests {
             critical_z: INTENT_Z,
             told: true,
         };
-        let at = |rms: f64| m.log_likelihood_ratio(Evidence::new(3.0 * rms * rms, 3), 100.0);
+        let ratio = m.likelihood_ratio(100.0);
+        let at = |rms: f64| ratio.of(Evidence::new(3.0 * rms * rms, 3));
         assert!(at(1.0) > 2.0, "{}", at(1.0));
         assert!(at(4.0) < -2.0, "{}", at(4.0));
         assert!(at(0.5) > at(1.0) && at(1.0) > at(2.0));
-        assert_eq!(m.log_likelihood_ratio(Evidence::new(0.0, 0), 100.0), 0.0);
+        assert_eq!(ratio.of(Evidence::new(0.0, 0)), 0.0);
     }
 
     #[test]

@@ -717,22 +717,15 @@ pub struct Projection {
     costs: RowCosts,
 }
 
-impl Projection {
-    /// The cost [`Projector::shift_and_cost_at`] gives residuals `e` of this projection's
-    /// rows (one per row, in their order), wherever they come from.
-    pub fn cost(&self, e: &[f64]) -> f64 {
-        self.costs.cost(e)
-    }
-}
-
 /// What projecting onto some rows costs, whatever the point: `(n K nᵀ)⁺`.
 pub struct RowCosts {
     inverse: DMatrix<f64>,
 }
 
 impl RowCosts {
-    /// The cost of projecting away residuals `e` of the rows (one per row, in their order):
-    /// `eᵀ (n K nᵀ)⁺ e`.
+    /// The cost of projecting away residuals `e` of the rows (one per row, in their order,
+    /// wherever they come from): `eᵀ (n K nᵀ)⁺ e`, the cost
+    /// [`Projector::shift_and_cost_at`] gives.
     pub fn cost(&self, e: &[f64]) -> f64 {
         if e.is_empty() {
             return 0.0;
