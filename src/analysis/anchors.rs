@@ -222,7 +222,7 @@ pub fn project_variations_keeping(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::analysis::contacts::common_contacts;
+    use crate::analysis::contacts::{Slack, common_contacts};
 
     /// A top resting on a leg, no relation kept between them, and a variation whose noise
     /// left a 2-unit gap where the two meet (within the 3 units its noise explains). The
@@ -243,7 +243,12 @@ mod tests {
         noisy[leg_height] -= 2.0;
         let anchors = Anchors::of(&model);
         let faces = Faces::of(&model);
-        let contacts = common_contacts(&model, std::slice::from_ref(&noisy), &[vec![]], 3.0);
+        let contacts = common_contacts(
+            &model,
+            std::slice::from_ref(&noisy),
+            &[vec![]],
+            &mut Slack(3.0),
+        );
         assert!(
             !contacts.is_empty(),
             "the contact is seen through the noise"

@@ -63,7 +63,11 @@ pub type Boxed = (Vec<f64>, Vec<Vec<f64>>, Vec<Range>);
 /// Makes contact sides the box breaks free variables, one at a time, most broken first. A
 /// change of basis is kept only when the box it leads to (`box_of`) holds as many of the
 /// input and the presets as the box before: through a size, the sizes' positivity can
-/// shrink the box off a preset, and then the side is left as it was. Returns the last box.
+/// shrink the box off a preset; and a change that mends one side may part others (fewer
+/// sides must be parted over the box, or as many by less: [`parting`]). Then the side's
+/// next variable is tried in its place (the box is a different one for each), and the side
+/// is left as it was only when none does both.
+/// Returns the last box.
 pub fn keep_contacts(
     model: &Model,
     sol: &mut Solution,
@@ -76,17 +80,19 @@ pub fn keep_contacts(
     loop {
         let (input, _, ranges) = &current;
         let mut trial = sol.clone();
-        let Some(side) =
+        let Some(made) =
             make_one_contact_variable(model, &mut trial, contacts, input, ranges, slack, &refused)
         else {
             return current;
         };
         let next = box_of(&trial);
-        if held(&next) >= held(&current) {
+        let mends =
+            parting(&trial, contacts, &next, slack) < parting(sol, contacts, &current, slack);
+        if held(&next) >= held(&current) && mends {
             *sol = trial;
             current = next;
         } else {
-            refused.push(side);
+            refused.push(made);
         }
     }
 }
@@ -115,6 +121,26 @@ pub fn fix_pinned(
     }
 }
 
+/// How settings in the box part contacts: how many sides some setting parts (their least
+/// value over the box below the input's, or zero if that is less, by more than the
+/// slack), then by how much in all. Fewer sides parted is better, then less parting.
+fn parting(
+    sol: &Solution,
+    contacts: &[ContactSide],
+    (input, _, ranges): &Boxed,
+    slack: f64,
+) -> (usize, f64) {
+    let deficits = contacts.iter().map(|side| {
+        let (c, a) = in_free(&side.form, sol);
+        let at_input = c + a.iter().zip(input).map(|(x, y)| x * y).sum::<f64>();
+        let least = min_over_box(c, &a, |i| (ranges[i].min, ranges[i].max));
+        at_input.min(0.0) - slack - least
+    });
+    deficits
+        .filter(|&d| d > 0.0)
+        .fold((0, 0.0), |(n, total), d| (n + 1, total + d))
+}
+
 /// How many of the input and the presets the ranges hold.
 fn held((input, presets, ranges): &Boxed) -> usize {
     std::iter::once(input)
@@ -129,7 +155,8 @@ fn held((input, presets, ranges): &Boxed) -> usize {
 
 /// Makes the contact side most broken over the box of `ranges` (at values `input` of the
 /// free variables, a side may start below zero by `slack`) a free variable, if one is
-/// broken, is not `refused`, and has a free variable to replace. Returns the side made.
+/// broken and has a free variable to replace that is not `refused` for it (pairs of side
+/// and variable). Returns the pair made.
 pub fn make_one_contact_variable(
     model: &Model,
     sol: &mut Solution,
@@ -137,8 +164,8 @@ pub fn make_one_contact_variable(
     input: &[f64],
     ranges: &[Range],
     slack: f64,
-    refused: &[usize],
-) -> Option<usize> {
+    refused: &[(usize, usize)],
+) -> Option<(usize, usize)> {
     let places = positions(model, sol);
     // (deficit, side, variable to replace, the side in the free variables)
     let mut worst: Option<(f64, usize, usize, InFree)> = None;
@@ -147,7 +174,7 @@ pub fn make_one_contact_variable(
         let live: Vec<usize> = (0..a.len())
             .filter(|&i| a[i].abs() > COEFFICIENT_ZERO)
             .collect();
-        if live.len() < 2 || refused.contains(&k) {
+        if live.len() < 2 {
             continue;
         }
         let at_input = c + a.iter().zip(input).map(|(x, y)| x * y).sum::<f64>();
@@ -155,7 +182,7 @@ pub fn make_one_contact_variable(
             at_input.min(0.0) - slack - min_over_box(c, &a, |i| (ranges[i].min, ranges[i].max));
         // The variable to replace: one that only places a part, the last shown; failing
         // that, the last shown size (the family is the same either way).
-        let free = |i: &&usize| sol.contact(**i).is_none();
+        let free = |i: &&usize| sol.contact(**i).is_none() && !refused.contains(&(k, **i));
         let Some(&j) = live
             .iter()
             .rev()
@@ -184,7 +211,7 @@ pub fn make_one_contact_variable(
         axis: side.axis,
         form: side.form.clone(),
     });
-    Some(k)
+    Some((k, j))
 }
 
 /// Rewrites every slot's expression with free variable `j` replaced by `w = c + a·u`:
@@ -222,10 +249,9 @@ fn substitute(sol: &mut Solution, (c, a): &(f64, Vec<f64>), j: usize) {
 mod tests {
     use super::*;
     use crate::analysis::anchors::Anchors;
-    use crate::analysis::contacts::common_contacts;
     use crate::analysis::ranges::ranges;
+    use crate::analysis::ranges::tests::{parted_corners, sunk_top};
     use crate::analysis::reparam::solve;
-    use crate::ir::feature::world_intervals;
 
     /// A variable whose range is within twice the slack is fixed at its input value and the
     /// box taken again; one wider is left a slider.
@@ -277,17 +303,8 @@ mod tests {
     /// every corner the two touch, and the input and the variation are where they were.
     #[test]
     fn a_sunk_top_stays_on_its_leg_at_every_corner() {
-        let model = crate::front::test_model(
-            "cube([10, 10, 50]);\ntranslate([0, 0, 49]) cube([40, 40, 2]);\n",
-        );
-        let x0 = model.slot_values();
-        let x1: Vec<f64> = x0
-            .iter()
-            .map(|&v| if v == 50.0 || v == 49.0 { v + 20.0 } else { v })
-            .collect();
+        let (model, x0, x1, contacts, eps) = sunk_top();
         let mut sol = solve(&model, &Anchors::of(&model), &[]);
-        let contacts = common_contacts(&model, std::slice::from_ref(&x1), &[vec![]], 0.0);
-        let eps = crate::tolerance::Tolerance::for_size(model.size()).epsilon;
         let mut made = 0;
         let box_of = |sol: &Solution| {
             let input = sol.free_values(&x0);
@@ -305,38 +322,46 @@ mod tests {
             made += 1;
         }
         assert!(made >= 1, "no contact variable was made");
-        let (input, r) = box_of(&sol);
+        let (_, r) = box_of(&sol);
         for x in [&x0, &x1] {
             let back = sol.slot_values(&sol.free_values(x));
             for (a, b) in back.iter().zip(x.iter()) {
                 assert!((a - b).abs() < 1e-9, "a setting moved: {back:?} vs {x:?}");
             }
         }
-        let _ = input;
-        let n = r.len();
-        for corner in 0..(1u32 << n) {
-            let free: Vec<f64> = (0..n)
-                .map(|i| {
-                    if corner >> i & 1 == 1 {
-                        r[i].max
-                    } else {
-                        r[i].min
-                    }
-                })
-                .collect();
-            let x = sol.slot_values(&free);
-            let at = |p: usize| {
-                world_intervals(&model.parts[p])
-                    .unwrap()
-                    .map(|(lo, hi)| (lo.affine().unwrap().eval(&x), hi.affine().unwrap().eval(&x)))
-            };
-            let (leg, top) = (at(0), at(1));
-            for k in 0..3 {
-                assert!(
-                    leg[k].1 >= top[k].0 - eps && top[k].1 >= leg[k].0 - eps,
-                    "corner {free:?}: apart along {k}: {leg:?} {top:?}"
-                );
-            }
-        }
+        assert_eq!(parted_corners(&model, &sol, &r, (0, 1), eps), 0);
+    }
+
+    /// Refusing a side's change through one variable leaves the side to its others: the
+    /// sunk top's side made through the top's place is made through the leg's height next.
+    #[test]
+    fn a_refused_variable_leaves_the_side_to_another() {
+        let (model, x0, x1, contacts, eps) = sunk_top();
+        let start = solve(&model, &Anchors::of(&model), &[]);
+        let input = start.free_values(&x0);
+        let r = ranges(
+            &model,
+            &start,
+            &input,
+            &[start.free_values(&x1)],
+            &contacts,
+            eps,
+        );
+        let make = |refused: &[(usize, usize)]| {
+            let mut sol = start.clone();
+            make_one_contact_variable(&model, &mut sol, &contacts, &input, &r, eps, refused)
+        };
+        let Some((side, first)) = make(&[]) else {
+            panic!("no side was made a variable");
+        };
+        let Some((again, second)) = make(&[(side, first)]) else {
+            panic!("refusing one variable refused the side");
+        };
+        assert_eq!(again, side);
+        assert_ne!(second, first);
+        assert!(
+            make(&[(side, first), (side, second)]).is_none_or(|(s, _)| s != side),
+            "a side was made through a refused variable"
+        );
     }
 }

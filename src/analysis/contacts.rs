@@ -8,8 +8,19 @@
 //! kept positive, so a slider cannot pull a leg out of a top it sinks into, whether the
 //! relations kept say it touches or not.
 //!
+//! In a noisy variation a side that is slightly negative may still be a contact: the test
+//! is the noise model's ([`NoiseGaps`]). Closing the gap is a projection onto `side = 0`;
+//! its cost in the variation's metric (`gap² / nKnᵀ`, what the relations' test weighs) is
+//! what the noise explains when it is within `(z σ)²`. A side made of many noisy numbers
+//! (a part placed in nested frames) may open further than one made of two.
+//!
 //! Invariant: every form returned is at least `−slack` at the input (it is a contact there).
 
+use super::discover::Sample;
+use super::noise::NoiseModel;
+use super::project::{Faces, Projector};
+use super::rowbasis::RowBasis;
+use super::slotblocks::SlotBlocks;
 use crate::ir::feature::world_intervals;
 use crate::ir::{Affine, Model};
 
@@ -21,31 +32,77 @@ pub struct ContactSide {
     pub form: Affine,
 }
 
+/// Whether variation `v`'s side `form` at `gap < 0` still counts as touching.
+pub trait Touching {
+    fn touches(&mut self, v: usize, form: &Affine, gap: f64) -> bool;
+}
+
+/// A gap up to a fixed width counts as touching (world units).
+pub struct Slack(pub f64);
+
+impl Touching for Slack {
+    fn touches(&mut self, _: usize, _: &Affine, gap: f64) -> bool {
+        gap >= -self.0
+    }
+}
+
+/// The noise model's test: a gap counts as touching when closing it costs no more than the
+/// noise explains in one degree of freedom, `(z σ)²`, in the variation's own metric (the
+/// numbers' for typed variations, the faces' weighed by how well the pictures show them for
+/// fitted ones).
+pub struct NoiseGaps<'a> {
+    faces: &'a Faces,
+    samples: &'a [Sample],
+    /// `(z σ)²`, world units².
+    explained: f64,
+    projectors: Vec<Option<Projector>>,
+    blocks: SlotBlocks,
+    members: std::collections::HashMap<crate::ir::SlotId, Vec<crate::ir::SlotId>>,
+}
+
+impl<'a> NoiseGaps<'a> {
+    pub fn new(faces: &'a Faces, samples: &'a [Sample], noise: &NoiseModel) -> NoiseGaps<'a> {
+        let mut blocks = SlotBlocks::of(faces);
+        let members = blocks.members();
+        NoiseGaps {
+            faces,
+            samples,
+            explained: (noise.critical_z * noise.sigma).powi(2),
+            projectors: samples.iter().map(|_| None).collect(),
+            blocks,
+            members,
+        }
+    }
+}
+
+impl Touching for NoiseGaps<'_> {
+    fn touches(&mut self, v: usize, form: &Affine, gap: f64) -> bool {
+        let (faces, sample) = (self.faces, &self.samples[v]);
+        let projector = self.projectors[v].get_or_insert_with(|| {
+            Projector::new(match &sample.precision {
+                Some(p) => faces.face_metric(&sample.optional, &p.weights),
+                None => faces.number_metric(&sample.optional),
+            })
+        });
+        let basis = RowBasis::default();
+        let costs = projector.costs(faces, &basis, &mut self.blocks, &self.members, &[form]);
+        costs.cost(&[gap]) <= self.explained
+    }
+}
+
 /// Every side of every contact present in the input and in each variation that keeps both
-/// parts (`skipped[v]` lists the parts variation `v` does without). In a variation a gap up
-/// to `slack` (world units, what its noise explains) counts as touching; the input is
-/// exact, so there only a gap within the model's tolerance does.
+/// parts (`skipped[v]` lists the parts variation `v` does without), a variation's gap
+/// judged by `touching`; the input is exact, so there only a gap within the model's
+/// tolerance counts.
 pub fn common_contacts(
     model: &Model,
     variations: &[Vec<f64>],
     skipped: &[Vec<usize>],
-    slack: f64,
+    touching: &mut dyn Touching,
 ) -> Vec<ContactSide> {
     let x0 = model.slot_values();
     let exact = crate::tolerance::Tolerance::for_size(model.size()).epsilon;
-    let boxes: Vec<Option<[(Affine, Affine); 3]>> = model
-        .parts
-        .iter()
-        .map(|p| {
-            let iv = world_intervals(p)?;
-            let f = |n: &crate::ir::Num| n.affine().cloned();
-            Some([
-                (f(&iv[0].0)?, f(&iv[0].1)?),
-                (f(&iv[1].0)?, f(&iv[1].1)?),
-                (f(&iv[2].0)?, f(&iv[2].1)?),
-            ])
-        })
-        .collect();
+    let boxes = boxes(model);
     let mut out = Vec::new();
     for a in 0..boxes.len() {
         let Some(ba) = &boxes[a] else { continue };
@@ -57,13 +114,20 @@ pub fn common_contacts(
                     [(k, ba[k_].1.sub(&bb[k_].0)), (k, bb[k_].1.sub(&ba[k_].0))]
                 })
                 .collect();
-            let meets = |x: &[f64], gap: f64| sides.iter().all(|(_, f)| f.eval(x) >= -gap);
-            let kept = meets(&x0, exact)
-                && variations
-                    .iter()
-                    .zip(skipped)
-                    .filter(|(_, skip)| !skip.contains(&a) && !skip.contains(&b))
-                    .all(|(v, _)| meets(v, slack));
+            if !sides.iter().all(|(_, f)| f.eval(&x0) >= -exact) {
+                continue;
+            }
+            let kept = variations
+                .iter()
+                .zip(skipped)
+                .enumerate()
+                .filter(|(_, (_, skip))| !skip.contains(&a) && !skip.contains(&b))
+                .all(|(v, (x, _))| {
+                    sides.iter().all(|(_, f)| {
+                        let gap = f.eval(x);
+                        gap >= 0.0 || touching.touches(v, f, gap)
+                    })
+                });
             if kept {
                 out.extend(sides.into_iter().filter(|(_, f)| !f.is_constant()).map(
                     |(axis, form)| ContactSide {
@@ -76,4 +140,68 @@ pub fn common_contacts(
         }
     }
     out
+}
+
+/// Each part's world box as affine forms (`None` for a part without one).
+fn boxes(model: &Model) -> Vec<Option<[(Affine, Affine); 3]>> {
+    model
+        .parts
+        .iter()
+        .map(|p| {
+            let iv = world_intervals(p)?;
+            let f = |n: &crate::ir::Num| n.affine().cloned();
+            Some([
+                (f(&iv[0].0)?, f(&iv[0].1)?),
+                (f(&iv[1].0)?, f(&iv[1].1)?),
+                (f(&iv[2].0)?, f(&iv[2].1)?),
+            ])
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::analysis::noise::INTENT_Z;
+
+    /// How many contact sides survive a variation that shortens the leg (the first 30 of
+    /// the source) by `gap`, judged by the noise model at σ = 1.
+    fn sides_kept(source: &str, gap: f64) -> usize {
+        let model = crate::front::test_model(source);
+        let mut x1 = model.slot_values();
+        let leg = x1.iter().position(|&v| v == 30.0).unwrap_or(0);
+        x1[leg] -= gap;
+        let faces = Faces::of(&model);
+        let samples = [Sample::new(x1.clone(), Vec::new())];
+        let noise = NoiseModel {
+            sigma: 1.0,
+            floor: 1e-9,
+            pooled: 1,
+            critical_z: INTENT_Z,
+            told: true,
+        };
+        let mut gaps = NoiseGaps::new(&faces, &samples, &noise);
+        common_contacts(&model, &[x1], &[Vec::new()], &mut gaps).len()
+    }
+
+    /// A top resting on a leg, placed by one number or by three nested frames. Closing a
+    /// gap spreads over every number the side has, so the nested top's noise explains a
+    /// wider gap (√4·zσ ≈ 6.2 against √2·zσ ≈ 4.4): at 3 both touch, at 5 only the nested
+    /// one, at 8 neither.
+    #[test]
+    fn a_side_of_more_noisy_numbers_may_open_further() {
+        let flat = "cube([10, 10, 30]);\ntranslate([1, 1, 30]) cube([40, 40, 2]);\n";
+        let nested = "cube([10, 10, 30]);\ntranslate([1, 1, 10]) translate([0, 0, 12]) \
+                      translate([0, 0, 8]) cube([40, 40, 2]);\n";
+        for (gap, flat_kept, nested_kept) in
+            [(3.0, true, true), (5.0, false, true), (8.0, false, false)]
+        {
+            assert_eq!(sides_kept(flat, gap) > 0, flat_kept, "flat top, gap {gap}");
+            assert_eq!(
+                sides_kept(nested, gap) > 0,
+                nested_kept,
+                "nested top, gap {gap}"
+            );
+        }
+    }
 }

@@ -156,17 +156,7 @@ pub fn ranges(
         lo[i] -= margin;
         hi[i] += margin;
     }
-    let touching: Vec<Bound> = contacts
-        .iter()
-        .map(|side| {
-            // Never further apart than the input has them (a contact seen through noise
-            // may show a small gap there).
-            let (c, a) = in_free(&side.form, sol);
-            let min = at(c, &a).min(0.0) - slack;
-            Bound { c, a, min }
-        })
-        .filter(moving)
-        .collect();
+    let touching = contact_bounds(sol, input, contacts, slack);
     // Sizes stay positive everywhere, presets included (they are clamped to the ranges).
     shrink(&sizes, input, input, &mut lo, &mut hi);
     // Contacts give up the margin beyond the input and the variations, never a preset: a
@@ -189,6 +179,52 @@ pub fn ranges(
             }
         })
         .collect()
+}
+
+/// Every moving contact side as a bound: never further apart than the input has them (a
+/// contact seen through noise may show a small gap there), less the slack.
+fn contact_bounds(
+    sol: &Solution,
+    input: &[f64],
+    contacts: &[ContactSide],
+    slack: f64,
+) -> Vec<Bound> {
+    contacts
+        .iter()
+        .map(|side| {
+            let (c, a) = in_free(&side.form, sol);
+            let at_input = c + a.iter().zip(input).map(|(x, y)| x * y).sum::<f64>();
+            let min = at_input.min(0.0) - slack;
+            Bound { c, a, min }
+        })
+        .filter(|b| b.a.iter().any(|&x| x != 0.0))
+        .collect()
+}
+
+/// Shrinks `ranges` (made by [`ranges`], which never gives up a preset for a contact)
+/// towards the `input` until no setting in them parts a contact, each end rounded inward
+/// to its step. For contacts the box cannot keep with every preset inside (a side over
+/// several sliders no change of basis mends, `contact_vars`): a preset outside is then
+/// clamped into the box, the nearest setting that keeps every contact.
+pub fn close_contacts(
+    sol: &Solution,
+    input: &[f64],
+    contacts: &[ContactSide],
+    slack: f64,
+    ranges: &mut [Range],
+) {
+    let touching = contact_bounds(sol, input, contacts, slack);
+    let mut lo: Vec<f64> = ranges.iter().map(|r| r.min).collect();
+    let mut hi: Vec<f64> = ranges.iter().map(|r| r.max).collect();
+    shrink(&touching, input, input, &mut lo, &mut hi);
+    for (i, r) in ranges.iter_mut().enumerate() {
+        if lo[i] > r.min {
+            r.min = ((lo[i] / r.step).ceil() * r.step).min(input[i]);
+        }
+        if hi[i] < r.max {
+            r.max = ((hi[i] / r.step).floor() * r.step).max(input[i]);
+        }
+    }
 }
 
 /// The bound's smallest value over the box `[lo, hi]` (exact: it is affine).
@@ -262,8 +298,97 @@ fn shrink(bounds: &[Bound], from_lo: &[f64], from_hi: &[f64], lo: &mut [f64], hi
 }
 
 #[cfg(test)]
-mod tests {
-    use super::nice_step;
+pub(crate) mod tests {
+    use super::*;
+    use crate::analysis::anchors::Anchors;
+    use crate::analysis::contacts::{Slack, common_contacts};
+    use crate::analysis::reparam::solve;
+    use crate::ir::feature::world_intervals;
+
+    /// A top sunk 1 unit into a leg, no relation between them, a variation with both 20
+    /// higher (the input's values, the variation's), the contacts the two share and the
+    /// model's tolerance.
+    pub(crate) fn sunk_top() -> (Model, Vec<f64>, Vec<f64>, Vec<ContactSide>, f64) {
+        let model = crate::front::test_model(
+            "cube([10, 10, 50]);\ntranslate([0, 0, 49]) cube([40, 40, 2]);\n",
+        );
+        let x0 = model.slot_values();
+        let x1: Vec<f64> = x0
+            .iter()
+            .map(|&v| if v == 50.0 || v == 49.0 { v + 20.0 } else { v })
+            .collect();
+        let contacts = common_contacts(
+            &model,
+            std::slice::from_ref(&x1),
+            &[vec![]],
+            &mut Slack(0.0),
+        );
+        let eps = crate::tolerance::Tolerance::for_size(model.size()).epsilon;
+        (model, x0, x1, contacts, eps)
+    }
+
+    /// How many corners of the box of `ranges` part parts `a` and `b` (their world boxes
+    /// apart by more than `eps` along some axis).
+    pub(crate) fn parted_corners(
+        model: &Model,
+        sol: &Solution,
+        ranges: &[Range],
+        (a, b): (usize, usize),
+        eps: f64,
+    ) -> usize {
+        let n = ranges.len();
+        (0..(1u32 << n))
+            .filter(|corner| {
+                let free: Vec<f64> = (0..n)
+                    .map(|i| match corner >> i & 1 {
+                        1 => ranges[i].max,
+                        _ => ranges[i].min,
+                    })
+                    .collect();
+                let x = sol.slot_values(&free);
+                let at = |p: usize| {
+                    world_intervals(&model.parts[p]).map(|iv| {
+                        iv.map(|(lo, hi)| {
+                            let f =
+                                |n: &crate::ir::Num| n.affine().map_or(f64::NAN, |f| f.eval(&x));
+                            (f(&lo), f(&hi))
+                        })
+                    })
+                };
+                let (Some(pa), Some(pb)) = (at(a), at(b)) else {
+                    return true;
+                };
+                (0..3).any(|k| !(pa[k].1 >= pb[k].0 - eps && pb[k].1 >= pa[k].0 - eps))
+            })
+            .count()
+    }
+
+    /// A top sunk 1 unit into a leg, no relation between them, and a variation with both
+    /// 20 higher: the box that holds the input and the variation has corners where the top
+    /// floats. Closed, it has none, and it still holds the input.
+    #[test]
+    fn closed_ranges_part_no_contact_at_any_corner() {
+        let (model, x0, x1, contacts, eps) = sunk_top();
+        let sol = solve(&model, &Anchors::of(&model), &[]);
+        let input = sol.free_values(&x0);
+        let mut r = ranges(
+            &model,
+            &sol,
+            &input,
+            &[sol.free_values(&x1)],
+            &contacts,
+            eps,
+        );
+        assert!(
+            parted_corners(&model, &sol, &r, (0, 1), eps) > 0,
+            "the box held the contact already"
+        );
+        close_contacts(&sol, &input, &contacts, eps, &mut r);
+        assert_eq!(parted_corners(&model, &sol, &r, (0, 1), eps), 0);
+        for (x, r) in input.iter().zip(&r) {
+            assert!(r.min <= *x && *x <= r.max, "{x} left {r:?}");
+        }
+    }
 
     #[test]
     fn steps_are_round_and_divide_the_value() {

@@ -12,7 +12,7 @@ use crate::analysis::anchors::{Anchors, project_variations_keeping};
 use crate::analysis::candidates::{Candidate, Candidates};
 use crate::analysis::classes::sigmoid;
 use crate::analysis::contact_vars::{fix_pinned, keep_contacts};
-use crate::analysis::contacts::common_contacts;
+use crate::analysis::contacts::{NoiseGaps, Slack, common_contacts};
 use crate::analysis::cutoff::{Cutoff, change_points};
 use crate::analysis::details::pin_details;
 use crate::analysis::discover::{Sample, Similarity};
@@ -23,7 +23,7 @@ use crate::analysis::optional::{held_where_skipped, optional_parts, toggles};
 use crate::analysis::precision::Precision;
 use crate::analysis::prior::structural_prior;
 use crate::analysis::project::Faces;
-use crate::analysis::ranges::ranges;
+use crate::analysis::ranges::{close_contacts, ranges};
 use crate::analysis::reparam::{Solution, solve};
 use crate::analysis::similarity::VolumeSimilarity;
 use crate::back::diff::unified_diff;
@@ -235,7 +235,13 @@ pub fn reparameterize_telling(
     let eps = tolerance.epsilon;
     // A contact is evidence where the variation shows both parts.
     let unshown: Vec<Vec<usize>> = samples.iter().map(Sample::unshown).collect();
-    let contacts = common_contacts(model, &raw, &unshown, contact_slack(&choice, tolerance));
+    let contacts = match &choice.noise {
+        Some(noise) => {
+            let mut gaps = NoiseGaps::new(&faces, &samples, noise);
+            common_contacts(model, &raw, &unshown, &mut gaps)
+        }
+        None => common_contacts(model, &raw, &unshown, &mut Slack(eps)),
+    };
     let projected =
         project_variations_keeping(&anchors, &faces, &rows, &values, &optional, &contacts, eps);
     // Emit: sliders, blends and switches, the file and its presets.
@@ -245,8 +251,9 @@ pub fn reparameterize_telling(
         (input_free, variation_free, r)
     };
     let boxed = keep_contacts(model, &mut solution, &contacts, eps, &mut box_of);
-    let (input_free, mut variation_free, slider_ranges) =
+    let (input_free, mut variation_free, mut slider_ranges) =
         fix_pinned(&mut solution, eps, boxed, &mut box_of);
+    close_contacts(&solution, &input_free, &contacts, eps, &mut slider_ranges);
     // Presets are the projected variations inside the ranges: every size positive and
     // every kept contact closed there too.
     for v in &mut variation_free {
@@ -293,14 +300,6 @@ pub fn reparameterize_telling(
         plan,
         projected,
     }
-}
-
-/// How far apart two parts may be in a variation and still count as touching: what the
-/// variations' noise explains for the gap between two faces.
-fn contact_slack(choice: &Choice, tolerance: Tolerance) -> f64 {
-    choice.noise.map_or(tolerance.epsilon, |n| {
-        (n.critical_z * n.sigma * std::f64::consts::SQRT_2).max(tolerance.epsilon)
-    })
 }
 
 /// Which candidates are kept, and how they were chosen (for the report).
