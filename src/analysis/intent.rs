@@ -26,6 +26,7 @@ use super::discover::{Sample, Similarity, fidelity};
 use super::noise::{Evidence, LikelihoodRatio, NoiseModel, figures};
 use super::pool::Pool;
 use super::project::{Faces, Projection, Projector, RowCosts};
+use super::rowbasis::RowBasis;
 use crate::ir::{Affine, Model};
 use crate::tolerance::{NOISE_CANCELLATION_SHARE, NOISE_MAX_SHARE, RELATIVE_ROUNDOFF, Tolerance};
 
@@ -72,7 +73,8 @@ struct Context<'a> {
     by_slot: Vec<Vec<u32>>,
     /// Per candidate, per variation: whether the variation keeps both its parts.
     seen: Vec<Vec<bool>>,
-    /// Per candidate: its degrees of freedom (rows × variations that keep both parts).
+    /// Per candidate: its degrees of freedom (independent moving rows × variations that
+    /// keep both parts, [`noisy_rows`]).
     dof: Vec<usize>,
     /// Moves below this are round-off; residuals below `holds` mean the relation holds.
     roundoff: f64,
@@ -459,7 +461,7 @@ fn context<'a>(faces: &'a Faces, candidates: &'a Candidates, samples: &[Sample])
         .list
         .iter()
         .zip(&seen)
-        .map(|(c, seen)| c.rows.len() * seen.iter().filter(|s| **s).count())
+        .map(|(c, seen)| noisy_rows(&c.rows) * seen.iter().filter(|s| **s).count())
         .collect();
     Context {
         faces,
@@ -473,6 +475,16 @@ fn context<'a>(faces: &'a Faces, candidates: &'a Candidates, samples: &[Sample])
         size: 1.0,
         input: Vec::new(),
     }
+}
+
+/// How many independent directions the variations' noise moves `rows` in: the rank of
+/// their linear parts. A row the program holds identically (a corner's coordinate that
+/// both parts take from the same numbers) is zero in every variation whatever the noise,
+/// and a row that repeats others adds no residual of its own; counting either as a degree
+/// of freedom would spread one residual over several and pull `σ` below the noise.
+fn noisy_rows(rows: &[Affine]) -> usize {
+    let mut basis = RowBasis::default();
+    rows.iter().filter(|r| basis.add(r)).count()
 }
 
 /// The alive candidate most likely intent, scored afresh at this step, with its log
@@ -605,6 +617,18 @@ fn largest_residual(cx: &Context<'_>, c: usize, samples: &[Sample]) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Two corners that take `x` from the same numbers, `y` apart by `a − b` and `z` by
+    /// twice that: one residual, so one degree of freedom, not three.
+    #[test]
+    fn rows_the_program_holds_or_repeats_add_no_degree_of_freedom() {
+        let (a, b) = (Affine::slot(0), Affine::slot(1));
+        let x = Affine::slot(2).sub(&Affine::slot(2));
+        let y = a.sub(&b);
+        let z = y.scale(2.0);
+        assert_eq!(noisy_rows(&[x.clone(), y.clone(), z]), 1);
+        assert_eq!(noisy_rows(&[x, y, Affine::slot(2)]), 2);
+    }
 
     #[test]
     fn a_relation_tells_the_noise_only_when_it_cancels_its_numbers_changes() {
