@@ -27,7 +27,7 @@ use super::noise::{Evidence, LikelihoodRatio, NoiseModel, figures};
 use super::pool::Pool;
 use super::project::{Faces, Projection, Projector, RowCosts};
 use super::rowbasis::RowBasis;
-use crate::ir::{Affine, Model};
+use crate::ir::{Affine, Model, SlotId};
 use crate::tolerance::{NOISE_CANCELLATION_SHARE, NOISE_MAX_SHARE, RELATIVE_ROUNDOFF, Tolerance};
 
 /// The order the test took the candidates in, its statistics and its answer.
@@ -192,7 +192,16 @@ fn informative(
     if !told {
         return Vec::new();
     }
-    moving.into_iter().map(|c| evidence[c]).collect()
+    // A number no variation moved carries no noise: rows over such numbers add none.
+    moving
+        .into_iter()
+        .map(|c| {
+            let seen = cx.seen[c].iter().filter(|s| **s).count();
+            let rows = rows_of(cx.candidates, c);
+            let dof = noisy_rows(rows.iter().copied(), |s| moved[s as usize]) * seen;
+            Evidence { dof, ..evidence[c] }
+        })
+        .collect()
 }
 
 /// How far a row's terms moved from the `input` at `x`, as one residual: the root sum of
@@ -461,7 +470,7 @@ fn context<'a>(faces: &'a Faces, candidates: &'a Candidates, samples: &[Sample])
         .list
         .iter()
         .zip(&seen)
-        .map(|(c, seen)| noisy_rows(&c.rows) * seen.iter().filter(|s| **s).count())
+        .map(|(c, seen)| noisy_rows(&c.rows, |_| true) * seen.iter().filter(|s| **s).count())
         .collect();
     Context {
         faces,
@@ -478,13 +487,23 @@ fn context<'a>(faces: &'a Faces, candidates: &'a Candidates, samples: &[Sample])
 }
 
 /// How many independent directions the variations' noise moves `rows` in: the rank of
-/// their linear parts. A row the program holds identically (a corner's coordinate that
-/// both parts take from the same numbers) is zero in every variation whatever the noise,
-/// and a row that repeats others adds no residual of its own; counting either as a degree
-/// of freedom would spread one residual over several and pull `σ` below the noise.
-fn noisy_rows(rows: &[Affine]) -> usize {
+/// their linear parts over the slots `noisy` says carry noise. A row the program holds
+/// identically (a corner's coordinate that both parts take from the same numbers) is zero in
+/// every variation whatever the noise, and a row that repeats others adds no residual of
+/// its own; counting either as a degree of freedom would spread one residual over several
+/// and pull `σ` below the noise.
+fn noisy_rows<'r>(
+    rows: impl IntoIterator<Item = &'r Affine>,
+    noisy: impl Fn(SlotId) -> bool,
+) -> usize {
     let mut basis = RowBasis::default();
-    rows.iter().filter(|r| basis.add(r)).count()
+    rows.into_iter()
+        .filter(|r| {
+            let terms: Vec<(SlotId, f64)> =
+                r.terms.iter().copied().filter(|&(s, _)| noisy(s)).collect();
+            basis.add_terms(&terms)
+        })
+        .count()
 }
 
 /// The alive candidate most likely intent, scored afresh at this step, with its log
@@ -626,8 +645,13 @@ mod tests {
         let x = Affine::slot(2).sub(&Affine::slot(2));
         let y = a.sub(&b);
         let z = y.scale(2.0);
-        assert_eq!(noisy_rows(&[x.clone(), y.clone(), z]), 1);
-        assert_eq!(noisy_rows(&[x, y, Affine::slot(2)]), 2);
+        assert_eq!(noisy_rows(&[x.clone(), y.clone(), z], |_| true), 1);
+        assert_eq!(
+            noisy_rows(&[x.clone(), y.clone(), Affine::slot(2)], |_| true),
+            2
+        );
+        // Slot 2 no variation moved: no noise in it.
+        assert_eq!(noisy_rows(&[x, y, Affine::slot(2)], |s| s != 2), 1);
     }
 
     #[test]

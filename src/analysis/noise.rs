@@ -9,8 +9,9 @@
 //! by how well its pictures show it (`project::Faces::face_metric`, `precision`).
 //! Projecting a variation onto a relation in its metric moves it by the least displacement
 //! that makes the relation hold; if the relation is intent, that squared displacement over
-//! `σ²` is χ²-distributed with one degree of freedom per row and per variation that has
-//! both parts.
+//! `σ²` is χ²-distributed with one degree of freedom per independent row the noise moves
+//! (`intent::noisy_rows`: rows the program holds identically, or over numbers no variation
+//! moved, carry none) and per variation that has both parts.
 //!
 //! One decision rule follows, the same for every kind of object: a relation is intent when
 //! that is more likely than not, weighing the likelihood of its residuals under the noise
