@@ -253,7 +253,16 @@ pub fn reparameterize_telling(
     let boxed = keep_contacts(model, &mut solution, &contacts, eps, &mut box_of);
     let (input_free, mut variation_free, mut slider_ranges) =
         fix_pinned(&mut solution, eps, boxed, &mut box_of);
-    close_contacts(&solution, &input_free, &contacts, eps, &mut slider_ranges);
+    // Presets may give up what the noise explains to keep every contact closed.
+    let allowance = choice.noise.map_or(0.0, |n| n.critical_z * n.sigma);
+    close_contacts(
+        &solution,
+        (&input_free, &variation_free),
+        allowance,
+        &contacts,
+        eps,
+        &mut slider_ranges,
+    );
     // Presets are the projected variations inside the ranges: every size positive and
     // every kept contact closed there too.
     for v in &mut variation_free {
