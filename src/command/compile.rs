@@ -12,7 +12,7 @@ use crate::analysis::anchors::{Anchors, project_variations_keeping};
 use crate::analysis::candidates::{Candidate, Candidates};
 use crate::analysis::classes::sigmoid;
 use crate::analysis::contact_vars::{fix_pinned, keep_contacts};
-use crate::analysis::contacts::{NoiseGaps, Slack, common_contacts};
+use crate::analysis::contacts::{ContactSide, NoiseGaps, Slack, common_contacts};
 use crate::analysis::cutoff::{Cutoff, change_points};
 use crate::analysis::details::pin_details;
 use crate::analysis::discover::{Sample, Similarity};
@@ -23,7 +23,7 @@ use crate::analysis::optional::{held_where_skipped, optional_parts, toggles};
 use crate::analysis::precision::Precision;
 use crate::analysis::prior::structural_prior;
 use crate::analysis::project::Faces;
-use crate::analysis::ranges::{close_contacts, ranges};
+use crate::analysis::ranges::{Range, close_contacts, ranges};
 use crate::analysis::reparam::{Solution, solve};
 use crate::analysis::similarity::VolumeSimilarity;
 use crate::back::diff::unified_diff;
@@ -195,20 +195,7 @@ pub fn reparameterize_telling(
     // (A fitted variation's deviations weigh its faces in discovery, not this test.)
     let optional = optional_parts(model, &raw, &sim, 0.0);
     let values = held_where_skipped(model, &raw, &optional);
-    // A variation fitted to pictures says how well they show each face.
-    let samples: Vec<Sample> = values
-        .iter()
-        .zip(&optional)
-        .zip(variations)
-        .map(|((v, o), var)| Sample {
-            values: v.clone(),
-            optional: o.clone(),
-            precision: var
-                .uncertainty
-                .as_ref()
-                .map(|u| Precision::of(&faces, u, model.size())),
-        })
-        .collect();
+    let samples = samples_of(model, &faces, (&values, &optional), variations);
     // Discovery (or the prior): which relations to keep.
     let choice = if variations.is_empty() {
         by_prior(model, &candidates, options.all_constraints)
@@ -245,31 +232,13 @@ pub fn reparameterize_telling(
     let projected =
         project_variations_keeping(&anchors, &faces, &rows, &values, &optional, &contacts, eps);
     // Emit: sliders, blends and switches, the file and its presets.
-    let mut box_of = |sol: &Solution| {
-        let (input_free, variation_free) = free_values(model, sol, &projected);
-        let r = ranges(model, sol, &input_free, &variation_free, &contacts, eps);
-        (input_free, variation_free, r)
-    };
-    let boxed = keep_contacts(model, &mut solution, &contacts, eps, &mut box_of);
-    let (input_free, mut variation_free, mut slider_ranges) =
-        fix_pinned(&mut solution, eps, boxed, &mut box_of);
-    // Presets may give up what the noise explains to keep every contact closed.
-    let allowance = choice.noise.map_or(0.0, |n| n.critical_z * n.sigma);
-    close_contacts(
-        &solution,
-        (&input_free, &variation_free),
-        allowance,
+    let (input_free, variation_free, slider_ranges) = slider_box(
+        model,
+        &mut solution,
+        &projected,
         &contacts,
-        eps,
-        &mut slider_ranges,
+        choice.noise.as_ref(),
     );
-    // Presets are the projected variations inside the ranges: every size positive and
-    // every kept contact closed there too.
-    for v in &mut variation_free {
-        for (x, r) in v.iter_mut().zip(&slider_ranges) {
-            *x = x.clamp(r.min, r.max);
-        }
-    }
     let plan = plan(&PlanInputs {
         sources,
         loaded,
@@ -309,6 +278,69 @@ pub fn reparameterize_telling(
         plan,
         projected,
     }
+}
+
+/// Each variation as discovery sees it: its values with the numbers of parts it does without
+/// held at the input's, those parts, and for a variation fitted to pictures how well they
+/// show each face.
+fn samples_of(
+    model: &Model,
+    faces: &Faces,
+    (values, optional): (&[Vec<f64>], &[Vec<usize>]),
+    variations: &[Variation],
+) -> Vec<Sample> {
+    values
+        .iter()
+        .zip(optional)
+        .zip(variations)
+        .map(|((v, o), var)| Sample {
+            values: v.clone(),
+            optional: o.clone(),
+            precision: var
+                .uncertainty
+                .as_ref()
+                .map(|u| Precision::of(faces, u, model.size())),
+        })
+        .collect()
+}
+
+/// The sliders' box: the free variables at the input and at each projected variation (the
+/// presets), and their ranges. Contact sides the box cannot keep become free variables of
+/// their own where that parts fewer of them, variables the contacts pin are fixed, and the
+/// box is closed on the contacts, a preset giving up at most what the noise explains
+/// (nothing for exact variations). Presets are then clamped into the ranges: every size
+/// positive and every kept contact closed there too.
+fn slider_box(
+    model: &Model,
+    solution: &mut Solution,
+    projected: &[Vec<f64>],
+    contacts: &[ContactSide],
+    noise: Option<&NoiseModel>,
+) -> (Vec<f64>, Vec<Vec<f64>>, Vec<Range>) {
+    let eps = Tolerance::for_size(model.size()).epsilon;
+    let mut box_of = |sol: &Solution| {
+        let (input_free, variation_free) = free_values(model, sol, projected);
+        let r = ranges(model, sol, &input_free, &variation_free, contacts, eps);
+        (input_free, variation_free, r)
+    };
+    let boxed = keep_contacts(model, solution, contacts, eps, &mut box_of);
+    let (input_free, mut variation_free, mut slider_ranges) =
+        fix_pinned(solution, eps, boxed, &mut box_of);
+    let allowance = noise.map_or(0.0, |n| n.critical_z * n.sigma);
+    close_contacts(
+        solution,
+        (&input_free, &variation_free),
+        allowance,
+        contacts,
+        eps,
+        &mut slider_ranges,
+    );
+    for v in &mut variation_free {
+        for (x, r) in v.iter_mut().zip(&slider_ranges) {
+            *x = x.clamp(r.min, r.max);
+        }
+    }
+    (input_free, variation_free, slider_ranges)
 }
 
 /// Which candidates are kept, and how they were chosen (for the report).
