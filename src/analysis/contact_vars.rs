@@ -24,7 +24,7 @@
 //! holds at least as many of the input and the presets as the box it started from.
 
 use super::contacts::ContactSide;
-use super::ranges::{Range, in_free, min_over_box, size_forms};
+use super::ranges::{Range, at_free, in_free, min_over_box, size_forms};
 use super::reparam::{ContactVariable, Frac, Solution};
 use crate::ir::Model;
 use crate::tolerance::COEFFICIENT_ZERO;
@@ -130,15 +130,21 @@ fn parting(
     (input, _, ranges): &Boxed,
     slack: f64,
 ) -> (usize, f64) {
-    let deficits = contacts.iter().map(|side| {
-        let (c, a) = in_free(&side.form, sol);
-        let at_input = c + a.iter().zip(input).map(|(x, y)| x * y).sum::<f64>();
-        let least = min_over_box(c, &a, |i| (ranges[i].min, ranges[i].max));
-        at_input.min(0.0) - slack - least
-    });
-    deficits
+    contacts
+        .iter()
+        .map(|side| {
+            let (c, a) = in_free(&side.form, sol);
+            deficit(c, &a, input, ranges, slack)
+        })
         .filter(|&d| d > 0.0)
         .fold((0, 0.0), |(n, total), d| (n + 1, total + d))
+}
+
+/// How far a side (`c + a·free`) falls at its least over the box of `ranges` below
+/// what it must keep: its value at `input`, or zero if that is less, less `slack`. Positive
+/// when some setting parts it.
+fn deficit(c: f64, a: &[f64], input: &[f64], ranges: &[Range], slack: f64) -> f64 {
+    at_free(c, a, input).min(0.0) - slack - min_over_box(c, a, |i| (ranges[i].min, ranges[i].max))
 }
 
 /// How many of the input and the presets the ranges hold.
@@ -177,9 +183,7 @@ pub fn make_one_contact_variable(
         if live.len() < 2 {
             continue;
         }
-        let at_input = c + a.iter().zip(input).map(|(x, y)| x * y).sum::<f64>();
-        let deficit =
-            at_input.min(0.0) - slack - min_over_box(c, &a, |i| (ranges[i].min, ranges[i].max));
+        let deficit = deficit(c, &a, input, ranges, slack);
         // The variable to replace: one that only places a part, the last shown; failing
         // that, the last shown size (the family is the same either way).
         let free = |i: &&usize| sol.contact(**i).is_none() && !refused.contains(&(k, **i));

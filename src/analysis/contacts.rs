@@ -16,11 +16,10 @@
 //!
 //! Invariant: every form returned is at least `−slack` at the input (it is a contact there).
 
+use super::chosen::Chosen;
 use super::discover::Sample;
 use super::noise::NoiseModel;
 use super::project::{Faces, Projector};
-use super::rowbasis::RowBasis;
-use super::slotblocks::SlotBlocks;
 use crate::ir::feature::world_intervals;
 use crate::ir::{Affine, Model};
 
@@ -56,21 +55,18 @@ pub struct NoiseGaps<'a> {
     /// `(z σ)²`, world units².
     explained: f64,
     projectors: Vec<Option<Projector>>,
-    blocks: SlotBlocks,
-    members: std::collections::HashMap<crate::ir::SlotId, Vec<crate::ir::SlotId>>,
+    /// No relation chosen: each gap is weighed on its own.
+    none: Chosen,
 }
 
 impl<'a> NoiseGaps<'a> {
     pub fn new(faces: &'a Faces, samples: &'a [Sample], noise: &NoiseModel) -> NoiseGaps<'a> {
-        let mut blocks = SlotBlocks::of(faces);
-        let members = blocks.members();
         NoiseGaps {
             faces,
             samples,
             explained: (noise.critical_z * noise.sigma).powi(2),
             projectors: samples.iter().map(|_| None).collect(),
-            blocks,
-            members,
+            none: Chosen::new(faces),
         }
     }
 }
@@ -78,14 +74,9 @@ impl<'a> NoiseGaps<'a> {
 impl Touching for NoiseGaps<'_> {
     fn touches(&mut self, v: usize, form: &Affine, gap: f64) -> bool {
         let (faces, sample) = (self.faces, &self.samples[v]);
-        let projector = self.projectors[v].get_or_insert_with(|| {
-            Projector::new(match &sample.precision {
-                Some(p) => faces.face_metric(&sample.optional, &p.weights),
-                None => faces.number_metric(&sample.optional),
-            })
-        });
-        let basis = RowBasis::default();
-        let costs = projector.costs(faces, &basis, &mut self.blocks, &self.members, &[form]);
+        let projector =
+            self.projectors[v].get_or_insert_with(|| Projector::new(sample.metric(faces)));
+        let costs = self.none.costs(projector, faces, &[form]);
         costs.cost(&[gap]) <= self.explained
     }
 }

@@ -20,7 +20,7 @@ use super::candidates::Candidates;
 use super::chosen::{Chosen, candidates_by_slot, forget, rows_of};
 use super::pool::Pool;
 use super::precision::Precision;
-use super::project::{Faces, Projector};
+use super::project::{Faces, Metric, Projector};
 use super::rowbasis::RowBasis;
 use crate::ir::Affine;
 use crate::tolerance::RELATIVE_ROUNDOFF;
@@ -101,6 +101,15 @@ impl Sample {
                 .precision
                 .as_ref()
                 .is_none_or(|pr| !pr.unseen.contains(&p))
+    }
+
+    /// The noise model's metric for this variation: the numbers' for a typed one, the faces'
+    /// weighed by how well its pictures show them for a fitted one.
+    pub fn metric(&self, faces: &Faces) -> Metric {
+        match &self.precision {
+            Some(p) => faces.face_metric(&self.optional, &p.weights),
+            None => faces.number_metric(&self.optional),
+        }
     }
 
     /// The parts the variation says nothing about (those it does not [`Sample::sees`]).

@@ -246,18 +246,14 @@ fn start_points<'a, R>(
     let points = samples
         .iter()
         .map(|s| {
-            let precision = s.precision.as_ref().map(|p| p.weights.as_slice());
-            let key = precision.is_none().then_some(s.optional.as_slice());
+            // Typed variations doing without the same parts share a metric.
+            let key = s.precision.is_none().then_some(s.optional.as_slice());
             let group = sets
                 .iter()
                 .position(|o| key.is_some() && *o == key)
                 .unwrap_or_else(|| {
                     sets.push(key);
-                    let metric = match precision {
-                        Some(p) => faces.face_metric(&s.optional, p),
-                        None => faces.number_metric(&s.optional),
-                    };
-                    projectors.push(Projector::new(metric));
+                    projectors.push(Projector::new(s.metric(faces)));
                     sets.len() - 1
                 });
             Point {

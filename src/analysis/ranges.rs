@@ -65,6 +65,11 @@ pub(crate) fn in_free(form: &Affine, sol: &Solution) -> (f64, Vec<f64>) {
     (c, coeffs)
 }
 
+/// A form in the free variables (from [`in_free`]) at the free variables' values `x`.
+pub(crate) fn at_free(c: f64, a: &[f64], x: &[f64]) -> f64 {
+    c + a.iter().zip(x).map(|(a, x)| a * x).sum::<f64>()
+}
+
 /// A step of about `span / 100` among 1, 2, 5 × 10^k that divides `value` if possible.
 pub fn nice_step(span: f64, value: f64) -> f64 {
     let target = (span / 100.0).max(MIN_SLIDER_STEP);
@@ -111,6 +116,13 @@ struct Bound {
     min: f64,
 }
 
+impl Bound {
+    /// Whether any slider moves it (one none moves is what it is everywhere).
+    fn moves(&self) -> bool {
+        self.a.iter().any(|&x| x != 0.0)
+    }
+}
+
 /// Ranges for the free variables given their values at the input and at each variation.
 /// Every size stays above a fiftieth of its input value, and every contact side above
 /// `−slack` (`contacts`; or above its input value less `slack`, where the input shows a
@@ -132,16 +144,14 @@ pub fn ranges(
             hi[i] = hi[i].max(v[i]);
         }
     }
-    let at = |c: f64, a: &[f64]| c + a.iter().zip(input).map(|(x, y)| x * y).sum::<f64>();
-    let moving = |b: &Bound| b.a.iter().any(|&x| x != 0.0);
     let sizes: Vec<Bound> = size_forms(model)
         .iter()
         .map(|f| {
             let (c, a) = in_free(f, sol);
-            let min = 0.02 * at(c, &a);
+            let min = 0.02 * at_free(c, &a, input);
             Bound { c, a, min }
         })
-        .filter(moving)
+        .filter(Bound::moves)
         .collect();
     let size = model.size();
     for i in 0..n {
@@ -193,11 +203,10 @@ fn contact_bounds(
         .iter()
         .map(|side| {
             let (c, a) = in_free(&side.form, sol);
-            let at_input = c + a.iter().zip(input).map(|(x, y)| x * y).sum::<f64>();
-            let min = at_input.min(0.0) - slack;
+            let min = at_free(c, &a, input).min(0.0) - slack;
             Bound { c, a, min }
         })
-        .filter(|b| b.a.iter().any(|&x| x != 0.0))
+        .filter(Bound::moves)
         .collect()
 }
 
