@@ -1,21 +1,28 @@
 //! Fitting quality on pictures nobody tuned it for: families from the generator
 //! (`reparamc::families`), each fitted from its input model to a far variant (a held-out
 //! draw of its intent parameters, optional parts dropped as drawn) seen from five cameras,
-//! with the `fit` command's default settings. Targets are drawn by our renderer
-//! (`reparamc render`) and, when `openscad` is installed, by OpenSCAD itself; each fit is
-//! scored by exact 3-D IoU of the fitted model against the variant.
+//! with the `fit` command's default settings. The five cameras are drawn at random around
+//! the variant (per seed), so no fixed set of views can be tuned to. Targets are drawn by
+//! our renderer (`reparamc render`) and, when `openscad` is installed, by OpenSCAD itself;
+//! each fit is scored by exact 3-D IoU of the fitted model against the variant.
 //!
 //! Prints, per target source, the share of fits with IoU ≥ 0.9 and ≥ 0.95, the median, and
 //! the mean time per fit. `FIT_FAMILIES_SEEDS=a..b` (default `0..20`), `FIT_FAMILIES_SIZE`
 //! (default 256), `FIT_FAMILIES_SOURCES=ours,openscad`, `FIT_FAMILIES_SCHEDULE=paper` (the
-//! paper's schedule instead of the default; `far` is the default's recipe by name). Under `cargo test` (`--bench`
+//! paper's schedule instead of the default; `far` is the default's recipe by name),
+//! `FIT_FAMILIES_FIXED_VIEWS=1` (the five default views of `reparamc render` instead of
+//! random ones), `FIT_FAMILIES_KEEP=dir` (keep each fit's model, variant, views and result
+//! in `dir/<seed>-<source>/` instead of deleting them). Under `cargo test` (`--bench`
 //! absent) it fits one family at 48 pixels as a smoke test.
 
 use reparamc::command::fit::{Options as FitOpts, Settings, prepare};
 use reparamc::command::render::BackendChoice;
+use reparamc::families::rng::Rng;
 use reparamc::families::{Family, style::Style};
 use reparamc::front::source::SourceMap;
-use reparamc::render::camera::{CameraSpec, cameras_json, default_views};
+use reparamc::render::camera::{
+    Camera, CameraSpec, Projection, cameras_json, default_views, framing,
+};
 use reparamc::render::openscad::{self, OpenScadRender};
 use reparamc::render::scene::{BOX_FILTER, DEFAULT_SHADE, Scene};
 use reparamc::render::soft::{prepare_view, render_view};
@@ -53,14 +60,36 @@ fn write_family(family: &Family, dir: &Path) -> (PathBuf, PathBuf) {
     (base, variant)
 }
 
-/// Five views framing the variant, drawn by `source` into `views/` with a `cameras.json`.
-fn targets(variant: &Path, views: &Path, size: u32, source: &str) -> bool {
+/// Five cameras from random directions around a box (azimuth uniform over the circle,
+/// OpenSCAD's tilt `rx` uniform over the 20° to 80° the default views span: from nearly
+/// above to nearly level), framed as the default views frame it; the same for the same
+/// family seed.
+fn random_views(lo: [f64; 3], hi: [f64; 3], size: u32, seed: u64) -> Vec<Camera> {
+    let (center, dist) = framing(lo, hi, size, size).unwrap();
+    let mut rng = Rng::new(seed ^ 0x0ca3_e7a5);
+    (0..5)
+        .map(|v| {
+            let (tilt, azimuth) = (rng.range(20.0, 80.0), rng.range(0.0, 360.0));
+            let params = [center.x, center.y, center.z, tilt, 0.0, azimuth, dist];
+            let name = format!("view{}", v + 1);
+            Camera::from_openscad(&name, &params, Projection::Perspective, size, size).unwrap()
+        })
+        .collect()
+}
+
+/// Five views framing the variant (random ones unless `FIT_FAMILIES_FIXED_VIEWS` is set),
+/// drawn by `source` into `views/` with a `cameras.json`.
+fn targets(variant: &Path, views: &Path, size: u32, source: &str, seed: u64) -> bool {
     let m = load(variant);
     let scene = Scene::from_parts(&m.parts, &m.csg);
     let Some((lo, hi)) = scene.bounds() else {
         return false;
     };
-    let cams = default_views(lo, hi, 5, size, size).unwrap();
+    let cams = if std::env::var_os("FIT_FAMILIES_FIXED_VIEWS").is_some() {
+        default_views(lo, hi, 5, size, size).unwrap()
+    } else {
+        random_views(lo, hi, size, seed)
+    };
     std::fs::create_dir_all(views).unwrap();
     let mut specs = Vec::new();
     for c in &cams {
@@ -89,15 +118,19 @@ fn targets(variant: &Path, views: &Path, size: u32, source: &str) -> bool {
 /// seconds.
 fn fit_one(seed: u64, size: u32, source: &str) -> Option<(f64, f64)> {
     let family = Family::generate(seed, 0)?;
-    let dir = std::env::temp_dir().join(format!(
-        "reparamc-fit-families-{}-{seed}-{source}",
-        std::process::id()
-    ));
+    let keep = std::env::var_os("FIT_FAMILIES_KEEP").map(PathBuf::from);
+    let dir = match &keep {
+        Some(root) => root.join(format!("{seed}-{source}")),
+        None => std::env::temp_dir().join(format!(
+            "reparamc-fit-families-{}-{seed}-{source}",
+            std::process::id()
+        )),
+    };
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     let (base, variant) = write_family(&family, &dir);
     let views = dir.join("views");
-    if !targets(&variant, &views, size, source) {
+    if !targets(&variant, &views, size, source, seed) {
         return None;
     }
     let opts = FitOpts {
@@ -122,7 +155,9 @@ fn fit_one(seed: u64, size: u32, source: &str) -> Option<(f64, f64)> {
     std::fs::write(&fitted_path, &fitted.scad).unwrap();
     let (a, b) = (load(&fitted_path), load(&variant));
     let iou = reparamc::geom::iou((&a.parts, &a.csg), (&b.parts, &b.csg));
-    let _ = std::fs::remove_dir_all(&dir);
+    if keep.is_none() {
+        let _ = std::fs::remove_dir_all(&dir);
+    }
     Some((iou, seconds))
 }
 

@@ -95,7 +95,7 @@ translate([55, 35, 0]) cube([leg, leg, 30]);
 fn a_thin_leg_is_resolved_to_a_tenth_of_a_unit() {
     // The model's legs start 6.4 thick; the pictures (antialiased, as `reparamc render`
     // draws them) show legs 5 thick. Area coverage in the last round and the finishing
-    // passes (the README's recipe for far pictures) resolve the width to an eighth of a
+    // passes (the `fit` command's default) resolve the width to an eighth of a
     // pixel; sigmoid edges left it at 5.55.
     use reparamc::render::scene::BOX_FILTER;
     let dir = std::env::temp_dir().join(format!("reparamc-thin-{}", std::process::id()));
@@ -121,15 +121,7 @@ fn a_thin_leg_is_resolved_to_a_tenth_of_a_unit() {
             Target::from_rgb(&reparamc::render::image::picture(&img))
         })
         .collect();
-    let opts = FitOptions {
-        optimizer: reparamc::fit::optimize::Optimizer::adam(),
-        lr: 0.01,
-        settle: 0.9,
-        polish: 2,
-        refine: 2,
-        border: 0.125,
-        ..FitOptions::default()
-    };
+    let opts = reparamc::command::fit::Settings::far().fit_options();
     let stages = staged(&m, opts.rounds, opts.rounds / 2);
     let r = fit(
         &p,

@@ -146,7 +146,7 @@ impl Settings {
     }
 
     /// The fit's options for these settings.
-    fn fit_options(&self) -> FitOptions {
+    pub fn fit_options(&self) -> FitOptions {
         FitOptions {
             lr: self.lr,
             iterations: self.iterations.max(1),

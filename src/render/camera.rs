@@ -511,6 +511,25 @@ pub fn cameras_json(specs: &[CameraSpec]) -> String {
     serde_json::to_string_pretty(specs).unwrap_or_else(|_| "[]".into()) + "\n"
 }
 
+/// Where a perspective camera of `width` × `height` pixels looks and from how far, from
+/// any direction, to see a bounding box whole with a margin: the box's centre, and the
+/// distance at which a sphere around it fits with 10% to spare. An error when the box is
+/// too large (or not finite) to frame.
+pub fn framing(lo: Vec3, hi: Vec3, width: u32, height: u32) -> Result<(DVec3, f64), CameraError> {
+    let (low, high) = (DVec3::from(lo), DVec3::from(hi));
+    let center = (low + high) * 0.5;
+    let radius = ((high - low).length() / 2.0).max(MIN_FRAMED_RADIUS);
+    let aspect = width as f64 / height as f64;
+    let half = (OPENSCAD_FOV.to_radians() / 2.0).tan() * aspect.min(1.0);
+    let dist = radius * 1.1 / half.atan().sin();
+    if !(center.is_finite() && dist.is_finite()) {
+        return Err(CameraError::Invalid(format!(
+            "a box from {lo:?} to {hi:?} is too large to frame with a camera"
+        )));
+    }
+    Ok((center, dist))
+}
+
 /// `n` views around a bounding box, framed so the whole box is visible with a margin:
 /// OpenSCAD's default view first, then front, right, back-left from above, and top. An
 /// error when the box is too large (or not finite) to frame, or the image size is invalid.
@@ -531,18 +550,7 @@ pub fn default_views(
         ("back", 70.0, 180.0),
         ("front_left", 65.0, -35.0),
     ];
-    let (low, high) = (DVec3::from(lo), DVec3::from(hi));
-    let center = (low + high) * 0.5;
-    let radius = ((high - low).length() / 2.0).max(MIN_FRAMED_RADIUS);
-    let aspect = width as f64 / height as f64;
-    let half = (OPENSCAD_FOV.to_radians() / 2.0).tan() * aspect.min(1.0);
-    // Distance at which a sphere around the box fits with a 10% margin.
-    let dist = radius * 1.1 / half.atan().sin();
-    if !(center.is_finite() && dist.is_finite()) {
-        return Err(CameraError::Invalid(format!(
-            "a box from {lo:?} to {hi:?} is too large to frame with a camera"
-        )));
-    }
+    let (center, dist) = framing(lo, hi, width, height)?;
     (0..n)
         .map(|i| {
             let (name, rx, rz) = VIEWS[i % VIEWS.len()];

@@ -5,8 +5,8 @@
 
 #![allow(dead_code)]
 
+use reparamc::command::fit::Settings;
 use reparamc::fit::loss::Target;
-use reparamc::fit::optimize::Optimizer;
 use reparamc::fit::{FitOptions, Parametric, fit};
 use reparamc::render::camera::{Camera, default_views};
 use reparamc::render::openscad::{self, OpenScadRender};
@@ -14,24 +14,16 @@ use reparamc::render::{Backend, CpuBackend};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-/// The settings of the quality table: Adam (the paper's SGD needs many more rounds on
-/// targets this far from the base), the paper's loss, 10 rounds of 30 iterations, the
-/// first half warm (one round stretching the model, then the structural subspace); each
-/// stage's last round settles, two sweeps of face moves finish (thin boards the gradient
-/// leaves a little thick), and two of hard-edge refinement (edges a fraction of a pixel
-/// off). The pictures frame the variant, so the fit sees them inside a border of
-/// background: a part of the base outside every picture must still cost.
+/// The settings of the quality table: the `fit` command's default ([`Settings::far`]):
+/// Adam (the paper's SGD needs many more rounds on targets this far from the base), the
+/// paper's loss, 10 rounds of 30 iterations, the first half warm (one round stretching the
+/// model, then the structural subspace); each stage's last round settles, two sweeps of
+/// face moves finish (thin boards the gradient leaves a little thick), and two of
+/// refinement (edges a fraction of a pixel off). The pictures frame the variant, so the fit
+/// sees them inside a border of background: a part of the base outside every picture must
+/// still cost.
 pub fn table_options() -> FitOptions {
-    FitOptions {
-        optimizer: Optimizer::adam(),
-        lr: 0.01,
-        rounds: 10,
-        settle: 0.9,
-        polish: 2,
-        refine: 2,
-        border: 0.125,
-        ..FitOptions::default()
-    }
+    Settings::far().fit_options()
 }
 
 /// The case `model/variant`.
