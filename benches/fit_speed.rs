@@ -1,5 +1,8 @@
 //! Fitting speed: the chair fitted to five 128×128 views, iterations per second on the CPU
-//! backend (and on the wgpu backend when an adapter exists), and peak memory.
+//! backend (and on the wgpu backend when an adapter exists), and peak memory. Under `cargo
+//! bench` it also times one whole fit as a user runs it: `reparamc fit` with its default
+//! settings, the chair to five 256×256 views of the bar stool (`reparamc render`'s views),
+//! on the CPU backend.
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use reparamc::fit::loss::Target;
@@ -99,7 +102,67 @@ fn report(name: &str, s: &Setup, backend: &mut dyn Backend) {
     );
 }
 
+/// One whole fit as the `fit` command runs it (default settings, CPU): the chair to five
+/// 256×256 views of the bar stool drawn as `reparamc render` draws them. Seconds.
+fn whole_fit_seconds() -> f64 {
+    use reparamc::command::fit::{Options as FitOpts, Settings, prepare};
+    use reparamc::command::render::{self, BackendChoice, Cameras, Layout, Pictures};
+    use reparamc::front::source::SourceMap;
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    let cpu = BackendChoice {
+        gpu: false,
+        cpu: true,
+    };
+    let dir = std::env::temp_dir().join(format!("reparamc-fit-speed-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let drawn = render::render(
+        &render::Options {
+            model: root.join("examples/variations/chair/bar_stool.scad"),
+            call: None,
+            size: (256, 256),
+            cameras: Cameras::Around(5),
+            backend: cpu,
+            layout: Layout::Views,
+        },
+        &mut SourceMap::new(),
+    )
+    .unwrap_or_else(|_| panic!("the bar stool renders"));
+    let Pictures::Views {
+        files,
+        cameras_json,
+    } = drawn.pictures
+    else {
+        unreachable!("views were asked for")
+    };
+    for (name, png) in files {
+        std::fs::write(dir.join(name), png).unwrap();
+    }
+    std::fs::write(dir.join("cameras.json"), cameras_json).unwrap();
+    let opts = FitOpts {
+        model: root.join("examples/chair.scad"),
+        target: dir.clone(),
+        subspace: false,
+        max_size: None,
+        gallery: false,
+        backend: cpu,
+        settings: Settings::default(),
+    };
+    let job = prepare(&opts, &mut SourceMap::new()).unwrap_or_else(|_| panic!("the fit starts"));
+    let t = Instant::now();
+    job.run(&mut |_| {})
+        .unwrap_or_else(|_| panic!("the fit runs"));
+    let seconds = t.elapsed().as_secs_f64();
+    let _ = std::fs::remove_dir_all(&dir);
+    seconds
+}
+
 fn bench(c: &mut Criterion) {
+    if std::env::args().any(|a| a == "--bench") {
+        eprintln!(
+            "fit_speed: whole fit, chair to five 256×256 views of the bar stool, default settings, CPU: {:.1} s",
+            whole_fit_seconds()
+        );
+    }
     let s = setup();
     breakdown(&s);
     let mut cpu = CpuBackend;
@@ -118,7 +181,12 @@ fn bench(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, bench);
+criterion_group! {
+    name = benches;
+    // No plots: this machine has no font for criterion's plotters backend.
+    config = Criterion::default().without_plots();
+    targets = bench
+}
 criterion_main!(benches);
 
 /// Where an iteration's time goes (printed once).

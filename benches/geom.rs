@@ -167,5 +167,10 @@ fn bench(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, bench);
+criterion_group! {
+    name = benches;
+    // No plots: this machine has no font for criterion's plotters backend.
+    config = Criterion::default().without_plots();
+    targets = bench
+}
 criterion_main!(benches);

@@ -122,5 +122,10 @@ fn bench(c: &mut Criterion) {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
-criterion_group!(benches, bench);
+criterion_group! {
+    name = benches;
+    // No plots: this machine has no font for criterion's plotters backend.
+    config = Criterion::default().without_plots();
+    targets = bench
+}
 criterion_main!(benches);

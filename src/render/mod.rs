@@ -172,7 +172,7 @@ impl Backend for CpuBackend {
             .zip(shades.par_iter())
             .enumerate()
             .map(|(k, (v, &sh))| {
-                let (img, _, entries) = soft::render_view(scene, v, Some(sigma), sh, grad);
+                let (img, entries) = soft::render_soft(scene, v, Some(sigma), sh, grad);
                 view_value(scene, v, k, &img, &entries, f, grad)
             })
             .collect();

@@ -5,7 +5,8 @@
 //! [`render_view`] evaluates every pixel: each item's coverage (a sigmoid of the signed
 //! distance to its hull, or exactly 0/1 with `sigma = None`), its visible surface (exact ray
 //! intersection, booleans by segment classification), and front-to-back compositing into
-//! coverage `M` and premultiplied shade `S`. Pixels near a silhouette also record an
+//! coverage `M` and premultiplied shade `S` ([`render_soft`] does the same without keeping
+//! the hard surface, which a loss does not read). Pixels near a silhouette also record an
 //! [`Entry`]: how `M` and `S` change with that part's signed distance and how the distance
 //! changes with the two hull vertices of the deciding edge. [`theta_gradient`] turns
 //! per-pixel derivatives (of a loss, say) and those entries into `∂/∂θ` for every part.
@@ -126,6 +127,43 @@ pub fn render_view(
     want_entries: bool,
 ) -> (SoftImage, HardImage, Entries) {
     let (w, h) = (prep.frame.width, prep.frame.height);
+    let npx = (w * h) as usize;
+    let mut hard = HardImage {
+        width: w,
+        height: h,
+        item: vec![-1; npx],
+        normal: vec![[0.0; 3]; npx],
+        depth: vec![f32::INFINITY; npx],
+    };
+    let (soft, entries) = render_into(scene, prep, sigma, shade, want_entries, Some(&mut hard));
+    (soft, hard, entries)
+}
+
+/// [`render_view`] without the hard surface, for a loss and its gradient: the same soft
+/// channels and entries, without filling (or allocating) the surface's buffers.
+pub fn render_soft(
+    scene: &Scene,
+    prep: &ViewPrep,
+    sigma: Option<f64>,
+    shade: [f64; NSHADE],
+    want_entries: bool,
+) -> (SoftImage, Entries) {
+    render_into(scene, prep, sigma, shade, want_entries, None)
+}
+
+/// One row of a hard image: item, normal, depth.
+type HardRow<'a> = (&'a mut [i32], &'a mut [[f32; 3]], &'a mut [f32]);
+
+/// Evaluates every pixel of the view into new soft channels, and into `hard` when given.
+fn render_into(
+    scene: &Scene,
+    prep: &ViewPrep,
+    sigma: Option<f64>,
+    shade: [f64; NSHADE],
+    want_entries: bool,
+    hard: Option<&mut HardImage>,
+) -> (SoftImage, Entries) {
+    let (w, h) = (prep.frame.width, prep.frame.height);
     let ctx = PixelCtx {
         scene,
         prep,
@@ -140,24 +178,25 @@ pub fn render_view(
         m: vec![0.0; npx],
         s: vec![0.0; npx],
     };
-    let mut hard = HardImage {
-        width: w,
-        height: h,
-        item: vec![-1; npx],
-        normal: vec![[0.0; 3]; npx],
-        depth: vec![f32::INFINITY; npx],
-    };
     let n = w as usize;
+    let hard_rows: Vec<Option<HardRow>> = match hard {
+        Some(hd) => hd
+            .item
+            .chunks_mut(n)
+            .zip(hd.normal.chunks_mut(n))
+            .zip(hd.depth.chunks_mut(n))
+            .map(|((i, nm), d)| Some((i, nm, d)))
+            .collect(),
+        None => (0..h).map(|_| None).collect(),
+    };
     // Each row writes its own slices of the images; entries are gathered in row order.
     let rows: Vec<Entries> = soft
         .m
         .par_chunks_mut(n)
         .zip(soft.s.par_chunks_mut(n))
-        .zip(hard.item.par_chunks_mut(n))
-        .zip(hard.normal.par_chunks_mut(n))
-        .zip(hard.depth.par_chunks_mut(n))
+        .zip(hard_rows.into_par_iter())
         .enumerate()
-        .map(|(y, ((((m, s), item), normal), depth))| {
+        .map(|(y, ((m, s), mut hard_row))| {
             let mut entries = Entries::default();
             let mut scratch = Scratch::default();
             let y = y as u32;
@@ -167,9 +206,11 @@ pub fn render_view(
                 let i = x as usize;
                 m[i] = out.m as f32;
                 s[i] = out.s as f32;
-                item[i] = out.item;
-                normal[i] = out.normal.as_vec3().to_array();
-                depth[i] = out.depth as f32;
+                if let Some((item, normal, depth)) = &mut hard_row {
+                    item[i] = out.item;
+                    normal[i] = out.normal.as_vec3().to_array();
+                    depth[i] = out.depth as f32;
+                }
             }
             entries
         })
@@ -178,7 +219,7 @@ pub fn render_view(
     for e in rows {
         entries.extend(e);
     }
-    (soft, hard, entries)
+    (soft, entries)
 }
 
 /// The span `[x0, x1)` of each row that some item touches; the rest is background.
@@ -192,4 +233,32 @@ fn row_spans(prep: &ViewPrep, w: u32, h: u32) -> Vec<(u32, u32)> {
         }
     }
     span
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::render::camera::default_views;
+    use crate::render::scene::DEFAULT_SHADE;
+
+    #[test]
+    fn the_soft_render_is_the_full_render_without_the_surface() {
+        // A box with a bore through it (a split difference) on a cylinder: plain and
+        // boolean items, hulls and curved edges.
+        let m = crate::front::test_model(
+            "difference() { cube([20, 10, 6]); translate([10, 5, -1]) cylinder(h = 8, r = 3); }\n\
+             translate([5, 5, 6]) cylinder(h = 12, r1 = 4, r2 = 2);\n",
+        );
+        let scene = Scene::from_parts(&m.parts, &m.csg);
+        let (lo, hi) = scene.bounds().unwrap();
+        for camera in default_views(lo, hi, 3, 48, 40).unwrap() {
+            for sigma in [Some(0.5), None] {
+                let prep = prepare_view(&scene, &camera, sigma);
+                let (soft, _, entries) = render_view(&scene, &prep, sigma, DEFAULT_SHADE, true);
+                let only = render_soft(&scene, &prep, sigma, DEFAULT_SHADE, true);
+                assert!(only.0.m.iter().filter(|&&v| v > 0.5).count() > 100);
+                assert_eq!((soft, entries), only, "{} at {sigma:?}", camera.name);
+            }
+        }
+    }
 }
