@@ -165,7 +165,7 @@ fn bench(c: &mut Criterion) {
     }
     let s = setup();
     breakdown(&s);
-    let mut cpu = CpuBackend;
+    let mut cpu = CpuBackend::new();
     report("CPU", &s, &mut cpu);
     let mut g = c.benchmark_group("fit_chair_5x128");
     g.sample_size(10);

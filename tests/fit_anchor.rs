@@ -46,7 +46,7 @@ fn a_fit_started_elsewhere_is_pulled_towards_the_model() {
             &cams,
             &targets,
             &[Stage::slots(1)],
-            &mut CpuBackend,
+            &mut CpuBackend::new(),
             &opts,
             &mut |_| {},
         )

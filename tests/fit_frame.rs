@@ -33,7 +33,7 @@ fn loss_at(p: &Parametric, x: &[f64], cams: &[Camera], targets: &[Target], borde
         cams,
         targets,
         &[Stage::slots(1)],
-        &mut CpuBackend,
+        &mut CpuBackend::new(),
         &opts,
         &mut |_| {},
     )

@@ -34,7 +34,7 @@ fn loss(
         .collect();
     let shades = vec![DEFAULT_SHADE; cams.len()];
     let out = image_loss(
-        &mut CpuBackend,
+        &mut CpuBackend::new(),
         &scene,
         &views,
         sigma,

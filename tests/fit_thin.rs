@@ -49,7 +49,7 @@ fn an_offset_leg_in_one_view_survives() {
         &cams,
         &targets,
         &stages,
-        &mut CpuBackend,
+        &mut CpuBackend::new(),
         &opts,
         &mut |_| {},
     )
@@ -128,7 +128,7 @@ fn a_thin_leg_is_resolved_to_a_tenth_of_a_unit() {
         &cams,
         &targets,
         &stages,
-        &mut CpuBackend,
+        &mut CpuBackend::new(),
         &opts,
         &mut |_| {},
     )

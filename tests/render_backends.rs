@@ -31,7 +31,7 @@ fn cpu_and_wgpu_agree() {
         }
     };
     eprintln!("{}", gpu.name());
-    let mut cpu = CpuBackend;
+    let mut cpu = CpuBackend::new();
     for rel in [
         "examples/chair.scad",
         "examples/toy_cart.scad",

@@ -207,7 +207,7 @@ pub(crate) fn choose_backend(
             "note: this build has no GPU backend; using the CPU".into(),
         ));
     }
-    let c = CpuBackend;
+    let c = CpuBackend::new();
     messages.push(Message::Line(format!("renderer: {}", c.name())));
     Box::new(c)
 }

@@ -227,7 +227,7 @@ impl<'a> Explorer<'a> {
             .map(|c| prepare_view(&scene, c, None))
             .collect();
         let shades = vec![DEFAULT_SHADE; views.len()];
-        CpuBackend
+        CpuBackend::new()
             .render(&scene, &views, None, &shades)
             .iter()
             .map(|(s, _)| picture(s))
@@ -321,7 +321,8 @@ impl<'a> Explorer<'a> {
             ..FitOptions::default()
         };
         let stages = [Stage::slots(1)];
-        let (b, p): (&mut CpuBackend, &mut dyn FnMut(&Progress)) = (&mut CpuBackend, &mut |_| {});
+        let (b, p): (&mut CpuBackend, &mut dyn FnMut(&Progress)) =
+            (&mut CpuBackend::new(), &mut |_| {});
         let fitted = if last {
             fit_measured(&problem, cameras, &targets, &stages, b, &opts, p)
                 .map(|(r, i)| (r, Some(i)))

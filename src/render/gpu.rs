@@ -658,7 +658,7 @@ impl Backend for GpuBackend {
     ) -> Vec<(SoftImage, HardImage)> {
         if sigma.is_some_and(is_box) {
             // The shader has no box filter: the CPU reference draws it.
-            return CpuBackend.render(scene, views, sigma, shades);
+            return CpuBackend::new().render(scene, views, sigma, shades);
         }
         let (s, h, _) = self.dispatch(scene, views, sigma, shades, false);
         s.into_iter().zip(h).collect()
@@ -674,7 +674,7 @@ impl Backend for GpuBackend {
         grad: bool,
     ) -> ImageValues {
         if is_box(sigma) {
-            return CpuBackend.evaluate(scene, views, sigma, shades, f, grad);
+            return CpuBackend::new().evaluate(scene, views, sigma, shades, f, grad);
         }
         let (softs, _, entries) = self.dispatch(scene, views, Some(sigma), shades, grad);
         let outs = softs

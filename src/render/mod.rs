@@ -130,9 +130,19 @@ fn sum_views(
     ImageValues { per_view, dtheta }
 }
 
-/// The reference backend.
-#[derive(Debug, Default, Clone, Copy)]
-pub struct CpuBackend;
+/// The reference backend. It keeps each view's last soft render ([`soft::SoftCache`]): a
+/// loss without gradient at a scene that differs in a few parts (a fit's single moves)
+/// renders only where those parts are or were, with the same result.
+#[derive(Debug, Default, Clone)]
+pub struct CpuBackend {
+    last: soft::SoftCache,
+}
+
+impl CpuBackend {
+    pub fn new() -> CpuBackend {
+        CpuBackend::default()
+    }
+}
 
 impl Backend for CpuBackend {
     fn name(&self) -> String {
@@ -166,6 +176,17 @@ impl Backend for CpuBackend {
         grad: bool,
     ) -> ImageValues {
         use rayon::prelude::*;
+        if !grad {
+            let images = self.last.render(scene, views, Some(sigma), shades);
+            let none = soft::Entries::default();
+            let outs: Vec<(f64, Vec<[f64; NTHETA]>)> = views
+                .par_iter()
+                .zip(images.par_iter())
+                .enumerate()
+                .map(|(k, (v, img))| view_value(scene, v, k, img, &none, f, false))
+                .collect();
+            return sum_views(scene.parts.len(), false, outs);
+        }
         // Views in parallel (each also renders its rows in parallel); summed in view order.
         let outs: Vec<(f64, Vec<[f64; NTHETA]>)> = views
             .par_iter()

@@ -406,5 +406,5 @@ pub fn run_case(
 }
 
 pub fn cpu() -> CpuBackend {
-    CpuBackend
+    CpuBackend::new()
 }

@@ -12,16 +12,19 @@
 //! per-pixel derivatives (of a loss, say) and those entries into `∂/∂θ` for every part.
 //!
 //! This module owns the prepared view, the rendered images and the per-view driver;
-//! `pixel` holds the per-pixel kernel, `visible` the exact boolean visible surface along a
+//! `cache` keeps each view's last soft render, so a scene that changed in a few parts is
+//! rendered again only where they are or were; `pixel` holds the per-pixel kernel, `visible` the exact boolean visible surface along a
 //! ray, and `gradient` the recorded entries and their chain rule to `θ`.
 
 // Geometry here indexes several arrays by axis; index loops read best.
 #![allow(clippy::needless_range_loop)]
 
+mod cache;
 mod gradient;
 mod pixel;
 mod visible;
 
+pub use cache::SoftCache;
 pub use gradient::{Entries, Entry, SurfaceEntry, accumulate_vertices, theta_gradient};
 
 use super::camera::{Camera, Frame};
@@ -220,6 +223,48 @@ fn render_into(
         entries.extend(e);
     }
     (soft, entries)
+}
+
+/// Evaluates the pixels of `region` (`[x0, y0, x1, y1)`) into `soft`, as [`render_soft`]
+/// evaluates them: a pixel outside its row's item span is background.
+fn render_region(
+    scene: &Scene,
+    prep: &ViewPrep,
+    sigma: Option<f64>,
+    shade: [f64; NSHADE],
+    region: [u32; 4],
+    soft: &mut SoftImage,
+) {
+    let (w, h) = (prep.frame.width, prep.frame.height);
+    let ctx = PixelCtx {
+        scene,
+        prep,
+        sigma,
+        shade,
+    };
+    let span = row_spans(prep, w, h);
+    let [x0, y0, x1, y1] = region;
+    let n = w as usize;
+    soft.m
+        .par_chunks_mut(n)
+        .zip(soft.s.par_chunks_mut(n))
+        .enumerate()
+        .filter(|(y, _)| (y0..y1).contains(&(*y as u32)))
+        .for_each(|(y, (m, s))| {
+            let mut scratch = Scratch::default();
+            let y = y as u32;
+            let (sx0, sx1) = span[y as usize];
+            for x in x0..x1 {
+                let (mv, sv) = if (sx0..sx1).contains(&x) {
+                    let out = ctx.pixel(x, y, &mut scratch, None);
+                    (out.m as f32, out.s as f32)
+                } else {
+                    (0.0, 0.0)
+                };
+                m[x as usize] = mv;
+                s[x as usize] = sv;
+            }
+        });
 }
 
 /// The span `[x0, x1)` of each row that some item touches; the rest is background.

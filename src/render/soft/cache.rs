@@ -1,0 +1,184 @@
+//! Each view's last soft render ([`SoftCache`]), so that a scene that differs from it in a
+//! few parts (a fit's single-number and single-face moves) is rendered again only inside
+//! the pixel rectangles of the items those parts belong to, before and after the change.
+//!
+//! Invariant: the result equals a whole render to the bit. A pixel outside every changed
+//! item's rectangle (before and after) is evaluated from the same items with the same
+//! geometry, so it keeps its value; a cached image is reused only for the same camera
+//! frame, softness, shading, items and albedo, and every other case renders the whole view.
+
+use super::{SoftImage, ViewPrep, render_region, render_soft};
+use crate::render::camera::Frame;
+use crate::render::scene::{Item, NSHADE, PartGeom, Scene};
+use rayon::prelude::*;
+
+/// A changed region covering more than this share of the image is rendered whole (the
+/// copy of the cached image would only add to the same work).
+const WHOLE_SHARE: f64 = 0.6;
+
+/// The last soft render of each view (by position in the list of views).
+#[derive(Debug, Default, Clone)]
+pub struct SoftCache {
+    views: Vec<Option<Last>>,
+}
+
+/// One view's last render and everything it was rendered from.
+#[derive(Debug, Clone)]
+struct Last {
+    frame: Frame,
+    sigma: Option<f64>,
+    shade: [f64; NSHADE],
+    parts: Vec<PartGeom>,
+    items: Vec<Item>,
+    albedo: Vec<f64>,
+    rects: Vec<Option<[u32; 4]>>,
+    image: SoftImage,
+}
+
+impl SoftCache {
+    /// The soft image of each view (no gradient entries), equal to [`render_soft`]'s, each
+    /// rendered only where the scene changed since that view's last render here.
+    pub fn render(
+        &mut self,
+        scene: &Scene,
+        views: &[ViewPrep],
+        sigma: Option<f64>,
+        shades: &[[f64; NSHADE]],
+    ) -> Vec<SoftImage> {
+        if self.views.len() < views.len() {
+            self.views.resize(views.len(), None);
+        }
+        self.views
+            .par_iter_mut()
+            .zip(views.par_iter().zip(shades.par_iter()))
+            .map(|(last, (prep, &shade))| {
+                let image = match last
+                    .as_ref()
+                    .map(|l| (l, l.changed(scene, prep, sigma, shade)))
+                {
+                    Some((l, Some(None))) => l.image.clone(),
+                    Some((l, Some(Some(region)))) => {
+                        let mut image = l.image.clone();
+                        render_region(scene, prep, sigma, shade, region, &mut image);
+                        image
+                    }
+                    _ => render_soft(scene, prep, sigma, shade, false).0,
+                };
+                *last = Some(Last {
+                    frame: prep.frame,
+                    sigma,
+                    shade,
+                    parts: scene.parts.clone(),
+                    items: scene.items.clone(),
+                    albedo: scene.albedo.clone(),
+                    rects: prep.rects.clone(),
+                    image: image.clone(),
+                });
+                image
+            })
+            .collect()
+    }
+}
+
+impl Last {
+    /// Where the view must be rendered again for `scene`: `None` when the cached image
+    /// cannot serve (another camera, softness, shading, item list or albedo, or a change
+    /// too wide to gain from), `Some(None)` when nothing changed, else the rectangle.
+    fn changed(
+        &self,
+        scene: &Scene,
+        prep: &ViewPrep,
+        sigma: Option<f64>,
+        shade: [f64; NSHADE],
+    ) -> Option<Option<[u32; 4]>> {
+        let same = self.frame == prep.frame
+            && self.sigma == sigma
+            && self.shade == shade
+            && self.parts.len() == scene.parts.len()
+            && self.items == scene.items
+            && self.albedo == scene.albedo;
+        if !same {
+            return None;
+        }
+        let moved: Vec<bool> = self
+            .parts
+            .iter()
+            .zip(&scene.parts)
+            .map(|(a, b)| a != b)
+            .collect();
+        let mut region: Option<[u32; 4]> = None;
+        for (i, item) in scene.items.iter().enumerate() {
+            if !item.parts.iter().any(|&p| moved[p]) {
+                continue;
+            }
+            for r in [self.rects[i], prep.rects[i]].into_iter().flatten() {
+                let u = region.get_or_insert(r);
+                *u = [
+                    u[0].min(r[0]),
+                    u[1].min(r[1]),
+                    u[2].max(r[2]),
+                    u[3].max(r[3]),
+                ];
+            }
+        }
+        let whole = (prep.frame.width * prep.frame.height) as f64;
+        match region {
+            Some(r) if ((r[2] - r[0]) * (r[3] - r[1])) as f64 > WHOLE_SHARE * whole => None,
+            region => Some(region),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::render::camera::default_views;
+    use crate::render::scene::DEFAULT_SHADE;
+    use crate::render::soft::prepare_view;
+
+    #[test]
+    fn a_scene_rendered_again_where_it_changed_equals_a_whole_render() {
+        // A table of plain boxes, a bored block (a difference) and a cone; each step moves
+        // one part, or several, or none.
+        let m = crate::front::test_model(
+            "cube([40, 20, 2]);\n\
+             translate([1, 1, -15]) cube([2, 2, 15]);\n\
+             translate([37, 17, -15]) cube([2, 2, 15]);\n\
+             difference() { translate([50, 0, -15]) cube([12, 12, 12]); translate([56, 6, -16]) cylinder(h = 14, r = 3); }\n\
+             translate([20, 10, 2]) cylinder(h = 8, r1 = 3, r2 = 1);\n",
+        );
+        let base = Scene::from_parts(&m.parts, &m.csg);
+        let (lo, hi) = base.bounds().unwrap();
+        let cameras = default_views(lo, hi, 3, 64, 48).unwrap();
+        let shades = vec![DEFAULT_SHADE; cameras.len()];
+        let mut cache = SoftCache::default();
+        let mut scene = base.clone();
+        let moves: [&[(usize, usize, f64)]; 5] = [
+            &[],
+            &[(1, 14, 1.5)],
+            &[(1, 14, -0.7), (4, 12, 2.0)],
+            &[],
+            &[(3, 3, 4.0)],
+        ];
+        for sigma in [Some(crate::render::scene::BOX_FILTER), Some(0.5), None] {
+            for step in moves {
+                for &(part, k, by) in step {
+                    let mut theta = scene.parts[part].theta;
+                    theta[k] += by;
+                    let g = &scene.parts[part];
+                    scene.parts[part] = PartGeom::from_theta(g.kind, g.centered, theta);
+                }
+                let views: Vec<ViewPrep> = cameras
+                    .iter()
+                    .map(|c| prepare_view(&scene, c, sigma))
+                    .collect();
+                let cached = cache.render(&scene, &views, sigma, &shades);
+                for (v, image) in views.iter().zip(&cached) {
+                    let whole = render_soft(&scene, v, sigma, DEFAULT_SHADE, false).0;
+                    assert_eq!(&whole, image, "{step:?} at {sigma:?}");
+                    assert!(whole.m.iter().filter(|&&x| x > 0.5).count() > 50);
+                }
+            }
+        }
+    }
+}
