@@ -279,31 +279,3 @@ fn row_spans(prep: &ViewPrep, w: u32, h: u32) -> Vec<(u32, u32)> {
     }
     span
 }
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::render::camera::default_views;
-    use crate::render::scene::DEFAULT_SHADE;
-
-    #[test]
-    fn the_soft_render_is_the_full_render_without_the_surface() {
-        // A box with a bore through it (a split difference) on a cylinder: plain and
-        // boolean items, hulls and curved edges.
-        let m = crate::front::test_model(
-            "difference() { cube([20, 10, 6]); translate([10, 5, -1]) cylinder(h = 8, r = 3); }\n\
-             translate([5, 5, 6]) cylinder(h = 12, r1 = 4, r2 = 2);\n",
-        );
-        let scene = Scene::from_parts(&m.parts, &m.csg);
-        let (lo, hi) = scene.bounds().unwrap();
-        for camera in default_views(lo, hi, 3, 48, 40).unwrap() {
-            for sigma in [Some(0.5), None] {
-                let prep = prepare_view(&scene, &camera, sigma);
-                let (soft, _, entries) = render_view(&scene, &prep, sigma, DEFAULT_SHADE, true);
-                let only = render_soft(&scene, &prep, sigma, DEFAULT_SHADE, true);
-                assert!(only.0.m.iter().filter(|&&v| v > 0.5).count() > 100);
-                assert_eq!((soft, entries), only, "{} at {sigma:?}", camera.name);
-            }
-        }
-    }
-}
