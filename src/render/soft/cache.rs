@@ -22,6 +22,18 @@ pub struct SoftCache {
     views: Vec<Option<Last>>,
 }
 
+/// What of a view to render again.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Redraw {
+    /// Nothing changed: the last image serves.
+    Nothing,
+    /// Only the pixels of this rectangle `[x0, y0, x1, y1)`.
+    Region([u32; 4]),
+    /// The whole view: the last image cannot serve (another camera, softness, shading,
+    /// item list or albedo), or the change is too wide to gain from.
+    Whole,
+}
+
 /// One view's last render and everything it was rendered from.
 #[derive(Debug, Clone)]
 struct Last {
@@ -52,12 +64,12 @@ impl SoftCache {
             .par_iter_mut()
             .zip(views.par_iter().zip(shades.par_iter()))
             .map(|(last, (prep, &shade))| {
-                let image = match last
+                let redraw = last
                     .as_ref()
-                    .map(|l| (l, l.changed(scene, prep, sigma, shade)))
-                {
-                    Some((l, Some(None))) => l.image.clone(),
-                    Some((l, Some(Some(region)))) => {
+                    .map_or(Redraw::Whole, |l| l.changed(scene, prep, sigma, shade));
+                let image = match (redraw, last.as_ref()) {
+                    (Redraw::Nothing, Some(l)) => l.image.clone(),
+                    (Redraw::Region(region), Some(l)) => {
                         let mut image = l.image.clone();
                         render_region(scene, prep, sigma, shade, region, &mut image);
                         image
@@ -81,16 +93,14 @@ impl SoftCache {
 }
 
 impl Last {
-    /// Where the view must be rendered again for `scene`: `None` when the cached image
-    /// cannot serve (another camera, softness, shading, item list or albedo, or a change
-    /// too wide to gain from), `Some(None)` when nothing changed, else the rectangle.
+    /// What of the view must be rendered again for `scene`.
     fn changed(
         &self,
         scene: &Scene,
         prep: &ViewPrep,
         sigma: Option<f64>,
         shade: [f64; NSHADE],
-    ) -> Option<Option<[u32; 4]>> {
+    ) -> Redraw {
         let same = self.frame == prep.frame
             && self.sigma == sigma
             && self.shade == shade
@@ -98,7 +108,7 @@ impl Last {
             && self.items == scene.items
             && self.albedo == scene.albedo;
         if !same {
-            return None;
+            return Redraw::Whole;
         }
         let moved: Vec<bool> = self
             .parts
@@ -123,8 +133,11 @@ impl Last {
         }
         let whole = (prep.frame.width * prep.frame.height) as f64;
         match region {
-            Some(r) if ((r[2] - r[0]) * (r[3] - r[1])) as f64 > WHOLE_SHARE * whole => None,
-            region => Some(region),
+            None => Redraw::Nothing,
+            Some(r) if ((r[2] - r[0]) * (r[3] - r[1])) as f64 > WHOLE_SHARE * whole => {
+                Redraw::Whole
+            }
+            Some(r) => Redraw::Region(r),
         }
     }
 }

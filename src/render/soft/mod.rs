@@ -167,13 +167,7 @@ fn render_into(
     hard: Option<&mut HardImage>,
 ) -> (SoftImage, Entries) {
     let (w, h) = (prep.frame.width, prep.frame.height);
-    let ctx = PixelCtx {
-        scene,
-        prep,
-        sigma,
-        shade,
-    };
-    let span = row_spans(prep, w, h);
+    let (ctx, span) = pixel_rows(scene, prep, sigma, shade);
     let npx = (w * h) as usize;
     let mut soft = SoftImage {
         width: w,
@@ -235,16 +229,9 @@ fn render_region(
     region: [u32; 4],
     soft: &mut SoftImage,
 ) {
-    let (w, h) = (prep.frame.width, prep.frame.height);
-    let ctx = PixelCtx {
-        scene,
-        prep,
-        sigma,
-        shade,
-    };
-    let span = row_spans(prep, w, h);
+    let (ctx, span) = pixel_rows(scene, prep, sigma, shade);
     let [x0, y0, x1, y1] = region;
-    let n = w as usize;
+    let n = prep.frame.width as usize;
     soft.m
         .par_chunks_mut(n)
         .zip(soft.s.par_chunks_mut(n))
@@ -265,6 +252,22 @@ fn render_region(
                 s[x as usize] = sv;
             }
         });
+}
+
+/// The per-pixel context of a view and the span of each of its rows ([`row_spans`]).
+fn pixel_rows<'a>(
+    scene: &'a Scene,
+    prep: &'a ViewPrep,
+    sigma: Option<f64>,
+    shade: [f64; NSHADE],
+) -> (PixelCtx<'a>, Vec<(u32, u32)>) {
+    let ctx = PixelCtx {
+        scene,
+        prep,
+        sigma,
+        shade,
+    };
+    (ctx, row_spans(prep, prep.frame.width, prep.frame.height))
 }
 
 /// The span `[x0, x1)` of each row that some item touches; the rest is background.
