@@ -6,14 +6,10 @@ use reparamc::render::camera::default_views;
 use reparamc::render::scene::{BOX_FILTER, DEFAULT_SHADE, PartGeom, Scene};
 use reparamc::render::soft::{SoftCache, ViewPrep, prepare_view, render_soft, render_view};
 
-/// The model of `text` (written to a temporary file and loaded as the command loads it).
+/// The model of `text`, loaded as the command loads a file.
 fn model(name: &str, text: &str) -> reparamc::ir::Model {
-    let dir = std::env::temp_dir().join(format!("reparamc-render-cache-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join(name);
-    std::fs::write(&path, text).unwrap();
     let mut sources = reparamc::front::source::SourceMap::new();
-    reparamc::load_model(&mut sources, &path)
+    reparamc::load_model_text(&mut sources, std::path::Path::new(name), text.as_bytes())
         .unwrap_or_else(|d| panic!("{name}: {}", d.message))
         .model
 }

@@ -176,25 +176,21 @@ impl Backend for CpuBackend {
         grad: bool,
     ) -> ImageValues {
         use rayon::prelude::*;
-        if !grad {
-            let images = self.last.render(scene, views, Some(sigma), shades);
-            let none = soft::Entries::default();
-            let outs: Vec<(f64, Vec<[f64; NTHETA]>)> = views
-                .par_iter()
-                .zip(images.par_iter())
-                .enumerate()
-                .map(|(k, (v, img))| view_value(scene, v, k, img, &none, f, false))
-                .collect();
-            return sum_views(scene.parts.len(), false, outs);
-        }
+        // Without a gradient the cache redraws only what changed since the last call.
+        let cached = (!grad).then(|| self.last.render(scene, views, Some(sigma), shades));
         // Views in parallel (each also renders its rows in parallel); summed in view order.
         let outs: Vec<(f64, Vec<[f64; NTHETA]>)> = views
             .par_iter()
             .zip(shades.par_iter())
             .enumerate()
-            .map(|(k, (v, &sh))| {
-                let (img, entries) = soft::render_soft(scene, v, Some(sigma), sh, grad);
-                view_value(scene, v, k, &img, &entries, f, grad)
+            .map(|(k, (v, &sh))| match &cached {
+                Some(images) => {
+                    view_value(scene, v, k, &images[k], &soft::Entries::default(), f, false)
+                }
+                None => {
+                    let (img, entries) = soft::render_soft(scene, v, Some(sigma), sh, grad);
+                    view_value(scene, v, k, &img, &entries, f, grad)
+                }
             })
             .collect();
         sum_views(scene.parts.len(), grad, outs)

@@ -9,16 +9,18 @@
 
 use super::{SoftImage, ViewPrep, render_region, render_soft};
 use crate::render::camera::Frame;
-use crate::render::scene::{Item, NSHADE, PartGeom, Scene};
+use crate::render::scene::{NSHADE, Scene};
 use rayon::prelude::*;
 
 /// A changed region covering more than this share of the image is rendered whole (the
 /// copy of the cached image would only add to the same work).
 const WHOLE_SHARE: f64 = 0.6;
 
-/// The last soft render of each view (by position in the list of views).
+/// The scene of the last render and the last soft render of each view (by position in the
+/// list of views), all rendered from that scene.
 #[derive(Debug, Default, Clone)]
 pub struct SoftCache {
+    scene: Option<Scene>,
     views: Vec<Option<Last>>,
 }
 
@@ -34,15 +36,12 @@ enum Redraw {
     Whole,
 }
 
-/// One view's last render and everything it was rendered from.
+/// One view's last render and what, besides the scene, it was rendered from.
 #[derive(Debug, Clone)]
 struct Last {
     frame: Frame,
     sigma: Option<f64>,
     shade: [f64; NSHADE],
-    parts: Vec<PartGeom>,
-    items: Vec<Item>,
-    albedo: Vec<f64>,
     rects: Vec<Option<[u32; 4]>>,
     image: SoftImage,
 }
@@ -57,16 +56,21 @@ impl SoftCache {
         sigma: Option<f64>,
         shades: &[[f64; NSHADE]],
     ) -> Vec<SoftImage> {
-        if self.views.len() < views.len() {
-            self.views.resize(views.len(), None);
-        }
-        self.views
+        // Views beyond this call's are dropped: the scene kept is this call's.
+        self.views.resize(views.len(), None);
+        let moved = self
+            .scene
+            .as_ref()
+            .and_then(|last| moved_parts(last, scene));
+        let images = self
+            .views
             .par_iter_mut()
             .zip(views.par_iter().zip(shades.par_iter()))
             .map(|(last, (prep, &shade))| {
-                let redraw = last
-                    .as_ref()
-                    .map_or(Redraw::Whole, |l| l.changed(scene, prep, sigma, shade));
+                let redraw = match (&moved, last.as_ref()) {
+                    (Some(moved), Some(l)) => l.changed(moved, scene, prep, sigma, shade),
+                    _ => Redraw::Whole,
+                };
                 let image = match (redraw, last.as_ref()) {
                     (Redraw::Nothing, Some(l)) => l.image.clone(),
                     (Redraw::Region(region), Some(l)) => {
@@ -80,42 +84,47 @@ impl SoftCache {
                     frame: prep.frame,
                     sigma,
                     shade,
-                    parts: scene.parts.clone(),
-                    items: scene.items.clone(),
-                    albedo: scene.albedo.clone(),
                     rects: prep.rects.clone(),
                     image: image.clone(),
                 });
                 image
             })
-            .collect()
+            .collect();
+        self.scene = Some(scene.clone());
+        images
     }
 }
 
+/// Which parts of `scene` differ from `last`; `None` when the two scenes are not the same
+/// assembly (other items, albedo or number of parts), so nothing rendered from `last`
+/// serves.
+fn moved_parts(last: &Scene, scene: &Scene) -> Option<Vec<bool>> {
+    let same = last.parts.len() == scene.parts.len()
+        && last.items == scene.items
+        && last.albedo == scene.albedo;
+    same.then(|| {
+        last.parts
+            .iter()
+            .zip(&scene.parts)
+            .map(|(a, b)| a != b)
+            .collect()
+    })
+}
+
 impl Last {
-    /// What of the view must be rendered again for `scene`.
+    /// What of the view must be rendered again for `scene`, whose parts `moved` says which
+    /// changed since this view's render.
     fn changed(
         &self,
+        moved: &[bool],
         scene: &Scene,
         prep: &ViewPrep,
         sigma: Option<f64>,
         shade: [f64; NSHADE],
     ) -> Redraw {
-        let same = self.frame == prep.frame
-            && self.sigma == sigma
-            && self.shade == shade
-            && self.parts.len() == scene.parts.len()
-            && self.items == scene.items
-            && self.albedo == scene.albedo;
-        if !same {
+        if self.frame != prep.frame || self.sigma != sigma || self.shade != shade {
             return Redraw::Whole;
         }
-        let moved: Vec<bool> = self
-            .parts
-            .iter()
-            .zip(&scene.parts)
-            .map(|(a, b)| a != b)
-            .collect();
         let mut region: Option<[u32; 4]> = None;
         for (i, item) in scene.items.iter().enumerate() {
             if !item.parts.iter().any(|&p| moved[p]) {

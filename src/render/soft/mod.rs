@@ -13,8 +13,9 @@
 //!
 //! This module owns the prepared view, the rendered images and the per-view driver;
 //! `cache` keeps each view's last soft render, so a scene that changed in a few parts is
-//! rendered again only where they are or were; `pixel` holds the per-pixel kernel, `visible` the exact boolean visible surface along a
-//! ray, and `gradient` the recorded entries and their chain rule to `θ`.
+//! rendered again only where they are or were; `pixel` holds the per-pixel kernel,
+//! `visible` the exact boolean visible surface along a ray, and `gradient` the recorded
+//! entries and their chain rule to `θ`.
 
 // Geometry here indexes several arrays by axis; index loops read best.
 #![allow(clippy::needless_range_loop)]
