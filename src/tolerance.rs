@@ -223,6 +223,17 @@ pub const NEAR_DEPTH: f64 = 1e-9;
 /// keeps a soft cut edge's width finite.
 pub const PIXEL_SCALE_FLOOR: f64 = 1e-12;
 
+/// Relative slack of a depth bound the renderer's shortcuts compare (an item's near depth,
+/// a surface's deepest point over a tile) and the least relative lead of a box's entry
+/// face over its other faces for a tile to count as showing that face alone: far above
+/// the rounding of a depth computed through a part's local frame, far below any gap
+/// between parts or a pixel's worth of depth.
+pub const SHORTCUT_DEPTH_SLACK: f64 = 1e-9;
+
+/// Slack (pixels) on a signed-distance bound the renderer's tiles are classified by: far
+/// above the rounding of a distance across an image, far below any coverage that matters.
+pub const SHORTCUT_PIXEL_SLACK: f64 = 1e-6;
+
 /// Overlap (pixels) a source pixel keeps in a box-filter resample at least, and the floor
 /// of a resampled pixel's total weight: only keeps an empty overlap from dividing by zero.
 pub const RESAMPLE_OVERLAP_FLOOR: f64 = 1e-6;

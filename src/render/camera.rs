@@ -300,6 +300,7 @@ impl Camera {
 
 impl Frame {
     /// The ray through the point `(px, py)` of the image (pixel centers are at `i + 0.5`).
+    #[inline]
     pub fn ray(&self, px: f64, py: f64) -> PixelRay {
         let x = px - self.width as f64 / 2.0;
         let y = self.height as f64 / 2.0 - py;
@@ -342,11 +343,13 @@ impl Frame {
     }
 
     /// Depth of a world point along the view direction.
+    #[inline]
     pub fn depth(&self, p: DVec3) -> f64 {
         self.forward.dot(p - self.eye)
     }
 
     /// A world direction in eye coordinates (x right, y up, z towards the viewer).
+    #[inline]
     pub fn to_eye(&self, n: DVec3) -> DVec3 {
         DVec3::new(n.dot(self.right), n.dot(self.up), -n.dot(self.forward))
     }

@@ -9,13 +9,27 @@ use glam::DVec3;
 impl PartGeom {
     /// The ray's exact passage through the part (world ray; parameters are the ray's).
     pub fn intersect(&self, origin: DVec3, dir: DVec3) -> Option<Hit> {
+        self.intersect_from(self.to_local(origin), dir)
+    }
+
+    /// [`PartGeom::intersect`] of the ray from the local point `o` (`to_local` of its world
+    /// origin, which a perspective view's rays share) along world direction `dir`.
+    #[inline]
+    pub fn intersect_from(&self, o: DVec3, dir: DVec3) -> Option<Hit> {
         if !self.valid {
             return None;
         }
-        let o = self.to_local(origin);
         let d = self.dir_to_local(dir);
         let local = match self.kind {
-            Kind::Box => intersect_box(o, d, self.lo, self.hi),
+            Kind::Box => {
+                let (t0, t1, (a0, s0), (a1, s1)) = intersect_box(o, d, self.lo, self.hi)?;
+                return Some(Hit {
+                    t0,
+                    t1,
+                    n0: self.axis_normals[a0] * s0,
+                    n1: self.axis_normals[a1] * s1,
+                });
+            }
             Kind::Frustum => intersect_frustum(o, d, self.lo[2], self.hi[2], self.r1, self.r2),
             Kind::Sphere => intersect_sphere(o, d, self.r1),
         }?;
@@ -25,6 +39,28 @@ impl PartGeom {
             n0: self.normal_to_world(local.n0),
             n1: self.normal_to_world(local.n1),
         })
+    }
+
+    /// For a box the ray enters (in front of its origin): how much sooner it crosses its
+    /// entry face's plane than any other face plane it enters through, relative to the
+    /// entry parameter. `None` for other kinds, a miss, or an entry behind the origin.
+    pub fn entry_face_margin(&self, origin: DVec3, dir: DVec3) -> Option<f64> {
+        if !self.valid || self.kind != Kind::Box {
+            return None;
+        }
+        let o = self.to_local(origin);
+        let d = self.dir_to_local(dir);
+        let (t0, _, (a0, _), _) = intersect_box(o, d, self.lo, self.hi)?;
+        if t0 <= 0.0 {
+            return None;
+        }
+        let mut margin = f64::INFINITY;
+        for a in (0..3).filter(|&a| a != a0 && d[a] != 0.0) {
+            let ta = (self.lo[a] - o[a]) / d[a];
+            let tb = (self.hi[a] - o[a]) / d[a];
+            margin = margin.min(t0 - ta.min(tb));
+        }
+        Some(margin / t0)
     }
 
     /// For a ray that misses the part (or nearly does): the normal of the surface the ray
@@ -88,11 +124,20 @@ struct LocalHit {
     n1: DVec3,
 }
 
-fn intersect_box(o: DVec3, d: DVec3, lo: DVec3, hi: DVec3) -> Option<LocalHit> {
+/// A ray's passage through the box `[lo, hi]`: entry and exit parameters and the faces
+/// there, each an axis and the sign of its outward normal.
+#[allow(clippy::type_complexity)]
+#[inline]
+fn intersect_box(
+    o: DVec3,
+    d: DVec3,
+    lo: DVec3,
+    hi: DVec3,
+) -> Option<(f64, f64, (usize, f64), (usize, f64))> {
     let mut t0 = f64::NEG_INFINITY;
     let mut t1 = f64::INFINITY;
-    let mut n0 = DVec3::ZERO;
-    let mut n1 = DVec3::ZERO;
+    let mut f0 = (2, 1.0);
+    let mut f1 = (2, 1.0);
     for a in 0..3 {
         if d[a] == 0.0 {
             if o[a] < lo[a] || o[a] > hi[a] {
@@ -109,16 +154,14 @@ fn intersect_box(o: DVec3, d: DVec3, lo: DVec3, hi: DVec3) -> Option<LocalHit> {
         };
         if near > t0 {
             t0 = near;
-            n0 = DVec3::ZERO;
-            n0[a] = sign;
+            f0 = (a, sign);
         }
         if far < t1 {
             t1 = far;
-            n1 = DVec3::ZERO;
-            n1[a] = -sign;
+            f1 = (a, -sign);
         }
     }
-    (t0 <= t1 && t0.is_finite() && t1.is_finite()).then_some(LocalHit { t0, t1, n0, n1 })
+    (t0 <= t1 && t0.is_finite() && t1.is_finite()).then_some((t0, t1, f0, f1))
 }
 
 fn intersect_sphere(o: DVec3, d: DVec3, r: f64) -> Option<LocalHit> {

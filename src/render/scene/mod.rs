@@ -77,6 +77,9 @@ pub struct PartGeom {
     pub r2: f64,
     /// World position of the local box's center.
     pub center: DVec3,
+    /// World unit normals of the local `+x`, `+y`, `+z` faces (`L⁻ᵀ·eₐ`, normalised): a
+    /// box's faces, worked out once rather than per ray.
+    pub axis_normals: [DVec3; 3],
     /// False for a degenerate part (singular map, negative size): it is never drawn.
     pub valid: bool,
     /// Points per circle of a curved part's silhouette; 0 chooses from the view. A fit
@@ -181,6 +184,7 @@ impl PartGeom {
         let it = inv * t;
         let mid = (lo + hi) / 2.0;
         let center = l * mid + t;
+        let axis_normals = [DVec3::X, DVec3::Y, DVec3::Z].map(|e| unit(inv.mul_transpose_vec3(e)));
         PartGeom {
             kind,
             centered,
@@ -194,22 +198,26 @@ impl PartGeom {
             r1,
             r2,
             center,
+            axis_normals,
             valid,
             ring: 0,
         }
     }
 
     /// Local coordinates of a world point.
+    #[inline]
     pub fn to_local(&self, p: DVec3) -> DVec3 {
         self.inv * p + self.inv_t
     }
 
     /// Local direction of a world direction (same ray parameter in both frames).
+    #[inline]
     pub fn dir_to_local(&self, d: DVec3) -> DVec3 {
         self.inv * d
     }
 
     /// World unit normal of a local normal (`L⁻ᵀ·n`).
+    #[inline]
     pub fn normal_to_world(&self, n: DVec3) -> DVec3 {
         unit(self.inv.mul_transpose_vec3(n))
     }

@@ -83,6 +83,10 @@ pub(super) struct PixelCtx<'a> {
     pub(super) prep: &'a ViewPrep,
     pub(super) sigma: Option<f64>,
     pub(super) shade: [f64; NSHADE],
+    /// Whether a pixel may skip work whose result is known (`opaque_front`, items wholly
+    /// behind an opaque surface, covered and empty tiles); without, every pixel visits
+    /// every item, the reference the shortcuts are tested against.
+    pub(super) shortcuts: bool,
 }
 
 /// Output of one pixel.
@@ -92,6 +96,24 @@ pub(super) struct PixelOut {
     pub(super) item: i32,
     pub(super) normal: DVec3,
     pub(super) depth: f64,
+}
+
+impl<'a> PixelCtx<'a> {
+    pub(super) fn new(
+        scene: &'a Scene,
+        prep: &'a ViewPrep,
+        sigma: Option<f64>,
+        shade: [f64; NSHADE],
+        shortcuts: bool,
+    ) -> PixelCtx<'a> {
+        PixelCtx {
+            scene,
+            prep,
+            sigma,
+            shade,
+            shortcuts,
+        }
+    }
 }
 
 impl PixelCtx<'_> {
@@ -132,7 +154,10 @@ impl PixelCtx<'_> {
             test = st.cov.s > -HULL_MARGIN;
         }
         if test {
-            st.hit = g.intersect(o, d).filter(|h| h.t1 > 0.0);
+            st.hit = self
+                .prep
+                .intersect(self.scene, p, o, d)
+                .filter(|h| h.t1 > 0.0);
         }
         st.alpha = match (self.sigma, st.hull) {
             (Some(_), true) => st.cov.alpha,
@@ -149,7 +174,7 @@ impl PixelCtx<'_> {
 
     /// Shade of item `item`'s surface with world normal `n_world`: the view's shading
     /// times the item's albedo.
-    fn shade_of(&self, item: usize, n_world: DVec3) -> f64 {
+    pub(super) fn shade_of(&self, item: usize, n_world: DVec3) -> f64 {
         let n = self.prep.frame.to_eye(n_world);
         let f = shade_features(n.to_array());
         let mut v = 0.0;
@@ -170,18 +195,33 @@ impl PixelCtx<'_> {
         let u = [px as f64 + 0.5, py as f64 + 0.5];
         let ray = frame.ray(u[0], u[1]);
         let (o, d) = (ray.origin, ray.dir);
+        if self.shortcuts
+            && let Some(out) = self.opaque_front(px, py, u, o, d)
+        {
+            return out;
+        }
         scratch.layers.clear();
         scratch.states.clear();
         scratch.negs.clear();
         let mut best_hard: Option<(f64, i32, DVec3)> = None;
-        for (idx, item) in self.scene.items.iter().enumerate() {
+        // Items nearest first: once an opaque surface is found, an item that lies wholly
+        // behind it can add nothing (`composite` drops what an opaque layer hides).
+        let mut opaque = f64::INFINITY;
+        for &idx in &self.prep.order {
+            let idx = idx as usize;
+            if self.shortcuts && self.prep.near[idx] > opaque {
+                break;
+            }
             let Some(r) = self.prep.rects[idx] else {
                 continue;
             };
             if px < r[0] || px >= r[2] || py < r[1] || py >= r[3] {
                 continue;
             }
-            self.item_layer(idx, item, u, o, d, scratch, &mut best_hard);
+            let item = &self.scene.items[idx];
+            if let Some(t) = self.item_layer(idx, item, u, o, d, scratch, &mut best_hard) {
+                opaque = opaque.min(t);
+            }
         }
         let (mut m, mut s) = composite(&mut scratch.layers);
         if self.sigma.is_some_and(is_box)
@@ -236,7 +276,9 @@ impl PixelCtx<'_> {
     }
 
     /// Item `idx` at this pixel: its parts' states (kept in the scratch while the item has a
-    /// layer), its exact visible surface (against `best_hard`) and its layer.
+    /// layer), its exact visible surface (against `best_hard`) and its layer. Returns the
+    /// depth of that surface when the layer is opaque there and lies at it: nothing behind
+    /// it shows, softly or hard.
     #[allow(clippy::too_many_arguments)]
     fn item_layer(
         &self,
@@ -247,7 +289,7 @@ impl PixelCtx<'_> {
         d: DVec3,
         scratch: &mut Scratch,
         best_hard: &mut Option<(f64, i32, DVec3)>,
-    ) {
+    ) -> Option<f64> {
         let Scratch {
             layers,
             states,
@@ -268,7 +310,7 @@ impl PixelCtx<'_> {
             visible_surface(&item.program, st)
         };
         if let Some((t, n)) = visible
-            && best_hard.is_none_or(|b| t < b.0)
+            && best_hard.is_none_or(|b| (t, idx as i32) < (b.0, b.1))
         {
             *best_hard = Some((t, idx as i32, n));
         }
@@ -294,8 +336,15 @@ impl PixelCtx<'_> {
             None => self.plain_layer(idx, item, st, visible, plain, o, d),
         };
         match layer {
-            Some(l) => layers.push(l),
-            None => states.truncate(first_state),
+            Some(l) => {
+                layers.push(l);
+                let at_surface = !l.split && visible.is_some_and(|(t, _)| t == l.depth);
+                (l.alpha >= 1.0 && at_surface).then_some(l.depth)
+            }
+            None => {
+                states.truncate(first_state);
+                None
+            }
         }
     }
 
@@ -656,9 +705,14 @@ fn cut_entries(
     }
 }
 
-/// Front-to-back compositing of the layers (sorted by depth here): `(M, S)`.
-fn composite(layers: &mut [Layer]) -> (f64, f64) {
-    layers.sort_by(|a, b| a.depth.total_cmp(&b.depth));
+/// Front-to-back compositing of the layers (sorted here by depth, ties by item): `(M, S)`.
+/// Layers behind the first opaque one are dropped: they add nothing, and neither the exact
+/// union of partial layers nor the gradient entries should look at them.
+fn composite(layers: &mut Vec<Layer>) -> (f64, f64) {
+    layers.sort_by(|a, b| a.depth.total_cmp(&b.depth).then(a.item.cmp(&b.item)));
+    if let Some(k) = layers.iter().position(|l| l.alpha >= 1.0) {
+        layers.truncate(k + 1);
+    }
     let mut m = 0.0;
     let mut s = 0.0;
     let mut t = 1.0;
