@@ -19,6 +19,7 @@
 //! surface's share of the pixel's luminance is `L(c) − (1 − α)·L(b)`.
 
 use crate::render::image::Rgb;
+use rayon::prelude::*;
 
 /// Radius (pixels) of the square in which a silhouette pixel looks for covered pixels.
 const REACH: i64 = 2;
@@ -56,24 +57,30 @@ pub fn unmix(img: &Rgb, background: [f32; 3], lo: f32, hi: f32) -> (Vec<f32>, Ve
     let lb = lum(&background);
     let mut m = vec![0.0f32; d.len()];
     let mut s = vec![0.0f32; d.len()];
-    for y in 0..h {
-        for x in 0..w {
-            let i = (y * w + x) as usize;
-            let gate = smoothstep(lo, hi, d[i]);
-            if gate == 0.0 {
-                continue;
+    // Rows in parallel, each writing its own slices.
+    m.par_chunks_mut(w as usize)
+        .zip(s.par_chunks_mut(w as usize))
+        .enumerate()
+        .for_each(|(y, (m, s))| {
+            let y = y as i64;
+            for x in 0..w {
+                let i = (y * w + x) as usize;
+                let gate = smoothstep(lo, hi, d[i]);
+                if gate == 0.0 {
+                    continue;
+                }
+                let covered = window(x, y)
+                    .filter_map(|(a, b)| at(a, b))
+                    .filter(|&j| solid[j]);
+                let near = mix_share(img.data[i], background, covered.map(|j| img.data[j]), lo);
+                let alpha = near
+                    .or_else(|| mix_share(img.data[i], background, palette.iter().copied(), lo))
+                    .unwrap_or(1.0);
+                let xi = x as usize;
+                m[xi] = alpha * gate;
+                s[xi] = (lum(&img.data[i]) - (1.0 - m[xi]) * lb).max(0.0);
             }
-            let covered = window(x, y)
-                .filter_map(|(a, b)| at(a, b))
-                .filter(|&j| solid[j]);
-            let near = mix_share(img.data[i], background, covered.map(|j| img.data[j]), lo);
-            let alpha = near
-                .or_else(|| mix_share(img.data[i], background, palette.iter().copied(), lo))
-                .unwrap_or(1.0);
-            m[i] = alpha * gate;
-            s[i] = (lum(&img.data[i]) - (1.0 - m[i]) * lb).max(0.0);
-        }
-    }
+        });
     (m, s)
 }
 

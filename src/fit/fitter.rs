@@ -25,6 +25,7 @@ use crate::render::scene::{BOX_FILTER, DEFAULT_SHADE, NSHADE};
 use crate::render::soft::{ViewPrep, prepare_view};
 use crate::render::{Backend, ImageValues};
 use crate::tolerance::GUARD_MARGIN;
+use rayon::prelude::*;
 use std::borrow::Cow;
 
 /// What went wrong before fitting could start.
@@ -455,7 +456,7 @@ impl<'a> Fitter<'a> {
         let (cams, tgts) = self.level(at.level);
         let scene = self.problem.scene(x).with_albedo(&look.albedo);
         let views: Vec<ViewPrep> = cams
-            .iter()
+            .par_iter()
             .map(|c| prepare_view(&scene, c, Some(at.sigma)))
             .collect();
         super::loss::image_loss(

@@ -282,25 +282,7 @@ pub fn sharpen(img: &[f32], width: u32, height: u32, spec: &LossSpec) -> Vec<f32
 /// The rectangle `[x0, y0, x1, y1)` of the non-zero pixels of a `w`×`h` image grown by
 /// `reach` on every side (clipped to the image); `None` when every pixel is zero.
 fn support(img: &[f32], w: usize, h: usize, reach: usize) -> Option<[usize; 4]> {
-    let mut rect: Option<[usize; 4]> = None;
-    for (y, row) in img.chunks(w).take(h).enumerate() {
-        let Some(first) = row.iter().position(|&v| v != 0.0) else {
-            continue;
-        };
-        let last = row.iter().rposition(|&v| v != 0.0).unwrap_or(first);
-        let r = rect.get_or_insert([first, y, last + 1, y + 1]);
-        r[0] = r[0].min(first);
-        r[2] = r[2].max(last + 1);
-        r[3] = y + 1;
-    }
-    rect.map(|[x0, y0, x1, y1]| {
-        [
-            x0.saturating_sub(reach),
-            y0.saturating_sub(reach),
-            (x1 + reach).min(w),
-            (y1 + reach).min(h),
-        ]
-    })
+    support_where(w, h, reach, |i| img[i] != 0.0)
 }
 
 /// Separable convolution with zero padding.
@@ -379,10 +361,14 @@ pub fn unpool(img: &[f32], w: u32, h: u32) -> Vec<f32> {
 }
 
 /// The sharpened differences of one view from its target (after `spec.level` poolings),
-/// the image sizes they were pooled through and the pixel count their means are over.
+/// kept only on `rect` (`[x0, y0, x1, y1)` of the `w`×`h` image, `None` when the render
+/// equals the target): outside it both the differences and everything sharpened from them
+/// (twice, for a gradient) are zero. Also the image sizes they were pooled through and the
+/// pixel count their means are over.
 struct Sharpened {
     qm: Vec<f32>,
     qs: Vec<f32>,
+    rect: Option<[usize; 4]>,
     w: u32,
     h: u32,
     sizes: Vec<(u32, u32)>,
@@ -391,6 +377,35 @@ struct Sharpened {
 
 fn sharpened(render: &SoftImage, target: &Target, spec: &LossSpec) -> Sharpened {
     let (w0, h0) = (render.width, render.height);
+    // Sharpening twice reaches twice the kernel's radius beyond the differences.
+    let reach = if spec.sharpen == 0.0 {
+        0
+    } else {
+        2 * (gaussian_kernel(spec.blur).len() / 2)
+    };
+    let n_at = |w: u32, h: u32| (w * h) as f64 * target.picture_share();
+    if spec.level == 0 {
+        // At full size the differences are taken on their rectangle alone.
+        let (w, h) = (w0 as usize, h0 as usize);
+        let differs = |i: usize| render.m[i] != target.m[i] || render.s[i] != target.s[i];
+        let rect = support_where(w, h, reach, differs);
+        let (qm, qs) = match rect {
+            Some(r) => (
+                sharpen_rect(&crop_difference(&render.m, &target.m, w, r), r, spec),
+                sharpen_rect(&crop_difference(&render.s, &target.s, w, r), r, spec),
+            ),
+            None => (Vec::new(), Vec::new()),
+        };
+        return Sharpened {
+            qm,
+            qs,
+            rect,
+            w: w0,
+            h: h0,
+            sizes: vec![(w0, h0)],
+            n: n_at(w0, h0),
+        };
+    }
     let mut rm: Vec<f32> = render.m.iter().zip(&target.m).map(|(a, b)| a - b).collect();
     let mut rs: Vec<f32> = render.s.iter().zip(&target.s).map(|(a, b)| a - b).collect();
     let mut sizes = vec![(w0, h0)];
@@ -405,15 +420,93 @@ fn sharpened(render: &SoftImage, target: &Target, spec: &LossSpec) -> Sharpened 
         (w, h) = (w2, h2);
         sizes.push((w, h));
     }
-    let n = (w * h) as f64 * target.picture_share();
+    let (wu, hu) = (w as usize, h as usize);
+    let rect = support_where(wu, hu, reach, |i| rm[i] != 0.0 || rs[i] != 0.0);
+    let (qm, qs) = match rect {
+        Some(r) => (
+            sharpen_rect(&crop(&rm, wu, r), r, spec),
+            sharpen_rect(&crop(&rs, wu, r), r, spec),
+        ),
+        None => (Vec::new(), Vec::new()),
+    };
     Sharpened {
-        qm: sharpen(&rm, w, h, spec),
-        qs: sharpen(&rs, w, h, spec),
+        qm,
+        qs,
+        rect,
         w,
         h,
         sizes,
-        n,
+        n: n_at(w, h),
     }
+}
+
+/// The rectangle `[x0, y0, x1, y1)` of the pixels of a `w`×`h` image where `nonzero`
+/// holds, grown by `reach` on every side (clipped to the image); `None` when it holds
+/// nowhere.
+fn support_where(
+    w: usize,
+    h: usize,
+    reach: usize,
+    nonzero: impl Fn(usize) -> bool,
+) -> Option<[usize; 4]> {
+    let mut rect: Option<[usize; 4]> = None;
+    for y in 0..h {
+        let row = y * w;
+        let Some(first) = (0..w).find(|&x| nonzero(row + x)) else {
+            continue;
+        };
+        let last = (first..w)
+            .rev()
+            .find(|&x| nonzero(row + x))
+            .unwrap_or(first);
+        let r = rect.get_or_insert([first, y, last + 1, y + 1]);
+        r[0] = r[0].min(first);
+        r[2] = r[2].max(last + 1);
+        r[3] = y + 1;
+    }
+    rect.map(|[x0, y0, x1, y1]| {
+        [
+            x0.saturating_sub(reach),
+            y0.saturating_sub(reach),
+            (x1 + reach).min(w),
+            (y1 + reach).min(h),
+        ]
+    })
+}
+
+/// `a − b` (images with rows `w` long) inside `rect`, row by row.
+fn crop_difference(a: &[f32], b: &[f32], w: usize, [x0, y0, x1, y1]: [usize; 4]) -> Vec<f32> {
+    let mut out = Vec::with_capacity((x1 - x0) * (y1 - y0));
+    for y in y0..y1 {
+        let (ra, rb) = (&a[y * w + x0..y * w + x1], &b[y * w + x0..y * w + x1]);
+        out.extend(ra.iter().zip(rb).map(|(p, q)| p - q));
+    }
+    out
+}
+
+/// The pixels of `img` (rows `w` long) inside `rect`, row by row.
+fn crop(img: &[f32], w: usize, [x0, y0, x1, y1]: [usize; 4]) -> Vec<f32> {
+    (y0..y1)
+        .flat_map(|y| img[y * w + x0..y * w + x1].iter().copied())
+        .collect()
+}
+
+/// `values` (the pixels of `rect`) placed in a `w`×`h` image of zeros.
+fn uncrop(values: &[f32], w: u32, h: u32, rect: Option<[usize; 4]>) -> Vec<f32> {
+    let mut out = vec![0.0f32; (w * h) as usize];
+    if let Some([x0, y0, x1, _]) = rect {
+        let cw = x1 - x0;
+        for (y, row) in values.chunks(cw).enumerate() {
+            let at = (y0 + y) * w as usize + x0;
+            out[at..at + cw].copy_from_slice(row);
+        }
+    }
+    out
+}
+
+/// [`sharpen`] of an image that is zero outside `rect`, given and returned on `rect`.
+fn sharpen_rect(values: &[f32], [x0, y0, x1, y1]: [usize; 4], spec: &LossSpec) -> Vec<f32> {
+    sharpen(values, (x1 - x0) as u32, (y1 - y0) as u32, spec)
 }
 
 /// One view's residuals: the elements whose squares sum to [`view_loss`] (the sharpened
@@ -422,9 +515,11 @@ pub fn residuals(render: &SoftImage, target: &Target, spec: &LossSpec) -> Vec<f3
     let q = sharpened(render, target, spec);
     let km = (1.0 / q.n.sqrt()) as f32;
     let ks = (spec.shading / q.n).sqrt() as f32;
-    q.qm.iter()
+    let qm = uncrop(&q.qm, q.w, q.h, q.rect);
+    let qs = uncrop(&q.qs, q.w, q.h, q.rect);
+    qm.iter()
         .map(|v| v * km)
-        .chain(q.qs.iter().map(|v| v * ks))
+        .chain(qs.iter().map(|v| v * ks))
         .collect()
 }
 
@@ -435,6 +530,7 @@ pub fn view_loss(render: &SoftImage, target: &Target, spec: &LossSpec, grad: boo
     let Sharpened {
         qm,
         qs,
+        rect,
         w,
         h,
         sizes,
@@ -452,14 +548,18 @@ pub fn view_loss(render: &SoftImage, target: &Target, spec: &LossSpec, grad: boo
     }
     let km = (2.0 / n) as f32;
     let ks = (2.0 * spec.shading / n) as f32;
-    let mut gm: Vec<f32> = sharpen(&qm, w, h, spec)
-        .into_iter()
-        .map(|v| v * km)
-        .collect();
-    let mut gs: Vec<f32> = sharpen(&qs, w, h, spec)
-        .into_iter()
-        .map(|v| v * ks)
-        .collect();
+    let scaled = |q: &[f32], k: f32| -> Vec<f32> {
+        let g: Vec<f32> = match rect {
+            Some(r) => sharpen_rect(q, r, spec)
+                .into_iter()
+                .map(|v| v * k)
+                .collect(),
+            None => Vec::new(),
+        };
+        uncrop(&g, w, h, rect)
+    };
+    let mut gm = scaled(&qm, km);
+    let mut gs = scaled(&qs, ks);
     for k in (0..sizes.len() - 1).rev() {
         let (wk, hk) = sizes[k];
         gm = unpool(&gm, wk, hk);

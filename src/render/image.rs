@@ -153,25 +153,17 @@ impl Rgb {
             return self.clone();
         }
         let mut out = Rgb::new(width, height, [0.0; 3]);
-        let sx = self.width as f64 / width as f64;
-        let sy = self.height as f64 / height as f64;
-        for y in 0..height {
-            for x in 0..width {
-                let x0 = x as f64 * sx;
-                let y0 = y as f64 * sy;
-                let x1 = x0 + sx;
-                let y1 = y0 + sy;
+        // Each output pixel averages the source pixels its square overlaps, weighted by the
+        // overlap: a product of a column weight and a row weight, worked out once per column
+        // and per row.
+        let columns = overlaps(self.width, width);
+        let rows = overlaps(self.height, height);
+        for (y, (iy0, wys)) in rows.iter().enumerate() {
+            for (x, (ix0, wxs)) in columns.iter().enumerate() {
                 let mut acc = [0.0f64; 3];
                 let mut wsum = 0.0;
-                let (ix0, iy0) = (x0.floor() as u32, y0.floor() as u32);
-                let ix1 = (x1.ceil() as u32).min(self.width).max(ix0 + 1);
-                let iy1 = (y1.ceil() as u32).min(self.height).max(iy0 + 1);
-                for iy in iy0..iy1.min(self.height) {
-                    for ix in ix0..ix1.min(self.width) {
-                        let wx = (x1.min(ix as f64 + 1.0) - x0.max(ix as f64))
-                            .max(RESAMPLE_OVERLAP_FLOOR);
-                        let wy = (y1.min(iy as f64 + 1.0) - y0.max(iy as f64))
-                            .max(RESAMPLE_OVERLAP_FLOOR);
+                for (iy, &wy) in (*iy0..).zip(wys) {
+                    for (ix, &wx) in (*ix0..).zip(wxs) {
                         let c = self.get(ix, iy);
                         for k in 0..3 {
                             acc[k] += wx * wy * c[k] as f64;
@@ -179,12 +171,30 @@ impl Rgb {
                         wsum += wx * wy;
                     }
                 }
-                out.data[(y * width + x) as usize] =
+                out.data[y * width as usize + x] =
                     acc.map(|v| (v / wsum.max(RESAMPLE_WEIGHT_FLOOR)) as f32);
             }
         }
         out
     }
+}
+
+/// For each of `to` output pixels along an axis of `from` source pixels: the first source
+/// pixel its interval overlaps and the overlap with each source pixel from there on.
+fn overlaps(from: u32, to: u32) -> Vec<(u32, Vec<f64>)> {
+    let scale = from as f64 / to as f64;
+    (0..to)
+        .map(|i| {
+            let a = i as f64 * scale;
+            let b = a + scale;
+            let first = a.floor() as u32;
+            let end = (b.ceil() as u32).min(from).max(first + 1).min(from);
+            let w = (first..end)
+                .map(|j| (b.min(j as f64 + 1.0) - a.max(j as f64)).max(RESAMPLE_OVERLAP_FLOOR))
+                .collect();
+            (first, w)
+        })
+        .collect()
 }
 
 fn describe_png_error(e: &png::DecodingError) -> String {
