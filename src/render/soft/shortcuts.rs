@@ -21,7 +21,7 @@
 
 use super::pixel::{PixelCtx, PixelOut};
 use super::{HULL_MARGIN, NEAR_SLACK};
-use crate::render::scene::{CUTOFF, is_box};
+use crate::render::scene::{CUTOFF, Hit, is_box};
 use glam::DVec3;
 use rayon::prelude::*;
 
@@ -113,12 +113,8 @@ fn tile_kind(ctx: &PixelCtx, tx: u32, ty: u32) -> Tile {
         if r[2] <= x0 || r[0] >= x1 || r[3] <= y0 || r[1] >= y1 {
             return false;
         }
-        ctx.scene.items[idx].parts.iter().any(|&p| {
-            ctx.scene.parts[p].valid
-                && ctx.prep.hulls[p]
-                    .as_ref()
-                    .is_none_or(|h| h.signed_distance(centre).0 + reach > -absent)
-        })
+        // Absent at every pixel centre: absent at the tile's centre by `reach` more.
+        !ctx.absent_at(idx, centre, absent + reach)
     };
     let mut present = ctx
         .prep
@@ -211,14 +207,19 @@ impl PixelCtx<'_> {
                 s
             }
         };
-        Some(PixelOut {
+        Some(self.surface_alone(idx as usize, &hit, shade))
+    }
+
+    /// A pixel that shows item `idx`'s surface `hit` alone, of shade `shade`: as
+    /// compositing one opaque layer over nothing gives it (`S = 0 + 1·shade`).
+    fn surface_alone(&self, idx: usize, hit: &Hit, shade: f64) -> PixelOut {
+        PixelOut {
             m: 1.0,
-            // As compositing one opaque layer over nothing adds it: `0 + 1·shade`.
             s: 0.0 + shade,
             item: idx as i32,
-            normal: frame.to_eye(hit.n0),
+            normal: self.prep.frame.to_eye(hit.n0),
             depth: hit.t0,
-        })
+        }
     }
 }
 
@@ -275,13 +276,7 @@ impl PixelCtx<'_> {
                 return None;
             }
         }
-        Some(PixelOut {
-            m: 1.0,
-            s: 0.0 + self.shade_of(first, hit.n0),
-            item: first as i32,
-            normal: self.prep.frame.to_eye(hit.n0),
-            depth: hit.t0,
-        })
+        Some(self.surface_alone(first, &hit, self.shade_of(first, hit.n0)))
     }
 
     /// Whether item `idx`, a single part, lies behind depth `t` along this pixel's ray as
