@@ -14,6 +14,7 @@
 //! [`ImageFunction`] the renderer evaluates and differentiates, and [`image_loss`] asks a
 //! backend for it.
 
+use super::coverage::colour_distance;
 use crate::render::image::Rgb;
 use crate::render::scene::{NSHADE, Scene};
 use crate::render::soft::{SoftImage, ViewPrep};
@@ -179,11 +180,6 @@ fn foreground_thresholds(img: &Rgb) -> ([f32; 3], f32, f32) {
     border.sort_by(f32::total_cmp);
     let noise = border.get(border.len() * 9 / 10).copied().unwrap_or(0.0);
     (background, FG_LO.max(3.0 * noise), FG_HI.max(6.0 * noise))
-}
-
-/// The largest difference of two colours' channels.
-fn colour_distance(a: &[f32; 3], b: &[f32; 3]) -> f32 {
-    (0..3).map(|k| (a[k] - b[k]).abs()).fold(0.0f32, f32::max)
 }
 
 /// A quick reading of a picture for comparing pictures with each other, not for fitting:
