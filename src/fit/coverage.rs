@@ -57,13 +57,14 @@ const MIXED_SHARE: (f32, f32) = (0.1, 0.9);
 /// background and above which it is surely foreground (a noisy picture raises them).
 pub fn unmix(img: &Rgb, background: [f32; 3], lo: f32, hi: f32) -> (Vec<f32>, Vec<f32>) {
     let px = Pixels::new(img, background, lo, hi);
-    let hard = px.hard_edges();
+    if px.hard_edges() {
+        return whole(img, &px.d, background, lo, hi);
+    }
     let solid: Vec<bool> = (0..px.d.len())
         .map(|i| px.neighbours(i).all(|j| j.is_some_and(|j| px.fg(j))))
         .collect();
     let palette = palette(img, &solid);
-    let lum = |c: &[f32; 3]| 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
-    let lb = lum(&background);
+    let lb = luminance(&background);
     let w = img.width as usize;
     let mut m = vec![0.0f32; px.d.len()];
     let mut s = vec![0.0f32; px.d.len()];
@@ -78,20 +79,40 @@ pub fn unmix(img: &Rgb, background: [f32; 3], lo: f32, hi: f32) -> (Vec<f32>, Ve
                 if gate == 0.0 {
                     continue;
                 }
-                let covered = || px.window(i).filter(|&j| solid[j]);
-                let alpha = if hard {
-                    1.0
-                } else {
-                    let c = img.data[i];
-                    mix_share(c, background, covered().map(|j| img.data[j]), lo)
-                        .or_else(|| mix_share(c, background, palette.iter().copied(), lo))
-                        .unwrap_or(1.0)
-                };
+                let c = img.data[i];
+                let covered = px.window(i).filter(|&j| solid[j]).map(|j| img.data[j]);
+                let alpha = mix_share(c, background, covered, lo)
+                    .or_else(|| mix_share(c, background, palette.iter().copied(), lo))
+                    .unwrap_or(1.0);
                 m[x] = alpha * gate;
-                s[x] = (lum(&img.data[i]) - (1.0 - m[x]) * lb).max(0.0);
+                s[x] = (luminance(&c) - (1.0 - m[x]) * lb).max(0.0);
             }
         });
     (m, s)
+}
+
+/// The channels of a picture with hard edges: every pixel is background or covered whole
+/// (but for the noise gate between `lo` and `hi`).
+fn whole(img: &Rgb, d: &[f32], background: [f32; 3], lo: f32, hi: f32) -> (Vec<f32>, Vec<f32>) {
+    let lb = luminance(&background);
+    let m: Vec<f32> = d.iter().map(|&d| smoothstep(lo, hi, d)).collect();
+    let s = img
+        .data
+        .iter()
+        .zip(&m)
+        .map(|(c, &m)| {
+            if m == 0.0 {
+                0.0
+            } else {
+                (luminance(c) - (1.0 - m) * lb).max(0.0)
+            }
+        })
+        .collect();
+    (m, s)
+}
+
+fn luminance(c: &[f32; 3]) -> f32 {
+    0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]
 }
 
 /// A picture's pixels with their distances from the background, for the neighbourhood
@@ -171,7 +192,8 @@ impl<'a> Pixels<'a> {
                 .flatten()
                 .filter(|&j| self.fg(j) && !rim(j))
                 .collect();
-            if !inner.iter().any(|&j| self.same(i, j)) && inner.iter().any(|&j| self.mix_of(i, j)) {
+            let pure = inner.iter().any(|&j| self.same(i, j));
+            if !pure && inner.iter().any(|&j| self.mix_of(i, j)) {
                 mixed += 1;
             }
         }
@@ -299,6 +321,11 @@ fn smoothstep(a: f32, b: f32, x: f32) -> f32 {
 mod tests {
     use super::*;
 
+    /// The length of `[a, b)` inside pixel `p`'s span `[p, p + 1)`.
+    fn overlap(p: u32, a: f32, b: f32) -> f32 {
+        (b.min(p as f32 + 1.0) - a.max(p as f32)).max(0.0)
+    }
+
     /// A 12×12 picture of a square covering `[2.5, 8.25)` on both axes in colour `f` on
     /// white, drawn with exact area coverage, and that coverage.
     fn square(f: [f32; 3]) -> (Rgb, Vec<f32>) {
@@ -347,7 +374,6 @@ mod tests {
             ([8.0, 8.4, 2.4, 7.7], 0.35),
             ([13.3, 14.6, 2.5, 9.25], 0.3),
         ];
-        let overlap = |p: u32, a: f32, b: f32| (b.min(p as f32 + 1.0) - a.max(p as f32)).max(0.0);
         let (w, h) = (18u32, 12u32);
         let mut img = Rgb::new(w, h, [1.0; 3]);
         let mut want = vec![0.0f32; (w * h) as usize];
@@ -378,7 +404,6 @@ mod tests {
         let b = [1.0f32, 1.0, 0.9];
         let g0 = [0.45f32, 0.45, 0.42];
         let (w, h) = (18u32, 14u32);
-        let overlap = |p: u32, a: f32, c: f32| (c.min(p as f32 + 1.0) - a.max(p as f32)).max(0.0);
         let mut img = Rgb::new(w, h, b);
         let mut want = vec![0.0f32; (w * h) as usize];
         for y in 0..h {
