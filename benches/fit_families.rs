@@ -10,6 +10,7 @@
 //! the mean time per fit. `FIT_FAMILIES_SEEDS=a..b` (default `0..20`), `FIT_FAMILIES_SIZE`
 //! (default 256), `FIT_FAMILIES_SOURCES=ours,openscad`, `FIT_FAMILIES_SCHEDULE=paper` (the
 //! paper's schedule instead of the default; `far` is the default's recipe by name),
+//! `FIT_FAMILIES_REACH` (the schedule's [`Settings::reach`] instead),
 //! `FIT_FAMILIES_FIXED_VIEWS=1` (the five default views of `reparamc render` instead of
 //! random ones), `FIT_FAMILIES_KEEP=dir` (keep each fit's model, variant, views and result
 //! in `dir/<seed>-<source>/` instead of deleting them). Under `cargo test` (`--bench`
@@ -114,6 +115,15 @@ fn targets(variant: &Path, views: &Path, size: u32, source: &str, seed: u64) -> 
     true
 }
 
+/// The schedule `FIT_FAMILIES_SCHEDULE` names (the default's when unset).
+fn base_settings() -> Settings {
+    match std::env::var("FIT_FAMILIES_SCHEDULE").as_deref() {
+        Ok("far") => Settings::far(),
+        Ok("paper") => Settings::paper(),
+        _ => Settings::default(),
+    }
+}
+
 /// Fits the family's model to the variant's pictures with the default settings: IoU and
 /// seconds.
 fn fit_one(seed: u64, size: u32, source: &str) -> Option<(f64, f64)> {
@@ -140,10 +150,9 @@ fn fit_one(seed: u64, size: u32, source: &str) -> Option<(f64, f64)> {
         max_size: None,
         gallery: false,
         backend: CPU,
-        settings: match std::env::var("FIT_FAMILIES_SCHEDULE").as_deref() {
-            Ok("far") => Settings::far(),
-            Ok("paper") => Settings::paper(),
-            _ => Settings::default(),
+        settings: Settings {
+            reach: env_or("FIT_FAMILIES_REACH", base_settings().reach),
+            ..base_settings()
         },
     };
     let mut sources = SourceMap::new();

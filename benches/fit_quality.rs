@@ -6,7 +6,7 @@
 //! Environment: `FIT_QUALITY_SIZE` (pixels, default 256), `FIT_QUALITY_CASES` (comma-separated
 //! substrings of `model/variant` to run), `FIT_QUALITY_GPU=1` to fit with the wgpu backend.
 //! For experiments, the table's settings can be overridden: `FIT_SHADING`, `FIT_LAMBDA`,
-//! `FIT_POLISH`, `FIT_REFINE`, `FIT_BORDER`, `FIT_SETTLE`, `FIT_ROUNDS`, `FIT_LEVELS`,
+//! `FIT_POLISH`, `FIT_REFINE`, `FIT_BORDER`, `FIT_SETTLE`, `FIT_REACH`, `FIT_ROUNDS`, `FIT_LEVELS`,
 //! `FIT_SIGMA_END`, `FIT_DAMPED` (Adam's floor in the rerun, 0: none), and `FIT_ALBEDO`,
 //! `FIT_PROPORTIONS`, `FIT_RELATIVE`, `FIT_COVERAGE` (0 or 1); `WARM` and `SCALE` set the rounds of the
 //! structural and stretch stages; `FRAME_UNION` frames the cameras on the base and the
@@ -37,6 +37,9 @@ fn options_from_env() -> FitOptions {
     }
     if let Some(v) = get("FIT_SETTLE") {
         o.settle = v;
+    }
+    if let Some(v) = get("FIT_REACH") {
+        o.reach = v;
     }
     if let Some(v) = get("FIT_POLISH") {
         o.polish = v as usize;

@@ -111,6 +111,11 @@ pub struct Args {
     /// the stage ends at rest (0: the paper's constant rate) [paper: 0, far: 0.9].
     #[arg(long, value_parser = fraction)]
     settle: Option<f64>,
+    /// Bound each optimiser step: a stage's first step moves no face further than this
+    /// many edge softnesses, and the bound grows while the loss falls and halves when a
+    /// step raised it (0: no bound).
+    #[arg(long)]
+    reach: Option<f64>,
     /// Skip the opening search over the model's stretch along each axis (it brings a
     /// model that is far from the pictures' proportions within reach of the gradients).
     #[arg(long)]
@@ -200,6 +205,7 @@ fn settings(args: &Args, sigma: (f64, f64)) -> Settings {
         refine: args.refine.unwrap_or(base.refine),
         border: args.border.unwrap_or(base.border),
         settle: args.settle.unwrap_or(base.settle),
+        reach: args.reach.unwrap_or(base.reach),
         proportions: !args.no_proportions,
         per_item_albedo: !args.one_colour,
         coverage: base.coverage && !args.no_coverage,

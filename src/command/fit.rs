@@ -82,6 +82,8 @@ pub struct Settings {
     pub border: f64,
     /// How far the learning rate falls in each stage's last round (a fraction).
     pub settle: f64,
+    /// Largest move of a face in one step, in edge softnesses (0: no bound).
+    pub reach: f64,
     /// Open with the search over the model's stretch along each axis.
     pub proportions: bool,
     /// Fit a brightness per part (`false`: one grey per surface).
@@ -139,6 +141,7 @@ impl Settings {
             refine: fit.refine,
             border: fit.border,
             settle: fit.settle,
+            reach: fit.reach,
             proportions: fit.proportions,
             per_item_albedo: fit.per_item_albedo,
             coverage: fit.coverage,
@@ -169,6 +172,7 @@ impl Settings {
             relative_steps: self.relative_steps,
             polish: self.polish,
             settle: self.settle,
+            reach: self.reach,
             refine: self.refine,
             border: self.border,
             proportions: self.proportions,
@@ -188,10 +192,11 @@ impl Settings {
             self.shading,
             self.sharpen,
             self.momentum,
+            self.reach,
         ];
         let bad = numbers.iter().any(|v| !v.is_finite() || *v < 0.0);
         if bad || self.lr == 0.0 {
-            return Err("--lr must be positive; --lambda, --blur, --shading, --sharpen and --momentum must not be negative".into());
+            return Err("--lr must be positive; --lambda, --blur, --shading, --sharpen, --momentum and --reach must not be negative".into());
         }
         Ok(())
     }

@@ -10,12 +10,12 @@
 //! after every pass, always on the hard surface at full size.
 
 use super::best::Best;
+use super::descent::Descent;
 use super::loss::{LossSpec, Target};
 use super::memo::Memo;
 use super::optimize::{self, OptState, Optimizer, Space};
 use super::options::{
-    FitOptions, GUARD_SWEEPS, HARD_SIGMA, MIN_LEVEL_SIDE, PROPORTIONS_POOLING, RELATIVE_FLOOR,
-    STEP_HALVINGS,
+    FitOptions, GUARD_SWEEPS, HARD_SIGMA, PROPORTIONS_POOLING, RELATIVE_FLOOR, STEP_HALVINGS,
 };
 use super::uncertainty::{AtPoint, Information};
 use super::{Parametric, Stage, albedo, frame, polish, proportions, stages};
@@ -206,6 +206,8 @@ pub struct Fitter<'a> {
     /// The cameras and targets at full size, bordered when [`FitOptions::border`] asks.
     cameras: Cow<'a, [Camera]>,
     targets: Cow<'a, [Target]>,
+    /// The finest camera's pixel, world units at its centre of view.
+    pixel: f64,
     /// Levels 1 to `max_level` of rendering small (halved cameras, pooled targets); empty
     /// when coarse levels are pooled at full size ([`FitOptions::pooled`]).
     halved: Vec<(Vec<Camera>, Vec<Target>)>,
@@ -232,20 +234,6 @@ struct Leg<'s> {
     stage: &'s Stage,
     start: &'s [f64],
     round0: usize,
-}
-
-/// One stage's optimiser run as it goes: where it moves, the optimiser's state and its
-/// position.
-struct Descent {
-    space: Space,
-    state: OptState,
-    y: Vec<f64>,
-}
-
-impl Descent {
-    fn x(&self) -> Vec<f64> {
-        self.space.x(&self.y)
-    }
 }
 
 /// Steps counted across every run of a fit (reruns included), reported as they are taken.
@@ -308,14 +296,19 @@ impl<'a> Fitter<'a> {
         // Parts that start out drawable must stay so.
         let drawable = problem.geoms(&problem.x0).iter().map(|g| g.valid).collect();
         let guards = problem.guards(opts.min_extent * problem.scale);
-        let max_level = coarsest_level(&cameras, opts.levels);
+        let max_level = frame::coarsest_level(&cameras, opts.levels);
         let halved = if opts.pooled {
             Vec::new()
         } else {
-            halved_levels(&cameras, &targets, max_level)
+            frame::halved_levels(&cameras, &targets, max_level)
         };
+        let pixel = cameras
+            .iter()
+            .map(Camera::pixel_size)
+            .fold(f64::INFINITY, f64::min);
         Ok(Fitter {
             opts,
+            pixel,
             stages,
             scales: step_scales(&problem, opts),
             rounds: stages.iter().map(|s| s.rounds).sum::<usize>().max(1),
@@ -631,12 +624,8 @@ impl<'a> Fitter<'a> {
             None => Space::slots(leg.start, &self.scales),
             Some(n) => Space::subspace(leg.start, n.clone(), &self.scales),
         };
-        let dim = space.dim();
-        let mut descent = Descent {
-            space,
-            state: OptState::new(optimizer, dim),
-            y: vec![0.0; dim],
-        };
+        let state = OptState::new(optimizer, space.dim());
+        let mut descent = Descent::new(space, state, self.opts.reach);
         let iterations = self.opts.iterations;
         let mut steps = Vec::with_capacity(leg.stage.rounds * iterations);
         let end = leg.round0 + leg.stage.rounds;
@@ -645,6 +634,7 @@ impl<'a> Fitter<'a> {
             let level = self.level_at(round);
             let last = round + 1 == end;
             self.refit_shades(backend, &descent.x(), look);
+            descent.last_loss = None;
             for it in 0..iterations {
                 let lr = optimize::round_rate(self.opts.lr, self.opts.settle, last, it, iterations);
                 let (image, reg) = self.descend(backend, &mut descent, level, sigma, lr, look);
@@ -681,9 +671,17 @@ impl<'a> Fitter<'a> {
             *g += r;
         }
         let gy = descent.space.grad_y(&gx);
-        let delta = descent.state.step(&gy, lr);
+        descent.adapt_reach(out.total() + rv);
+        let mut delta = descent.state.step(&gy, lr);
+        descent.bound_reach(&self.problem, &mut delta, self.softness(sigma, level));
         self.take_step(descent, delta);
         (out.total(), rv)
+    }
+
+    /// The world distance of the edge softness `sigma` at coarse level `level` (the last
+    /// round's softness at least), on the finest camera.
+    fn softness(&self, sigma: f64, level: usize) -> f64 {
+        sigma.max(self.opts.sigma.1) * self.pixel * (1u32 << level) as f64
     }
 
     /// Moves the descent by `−delta`, made safe: at most [`FitOptions::max_step`] per
@@ -728,11 +726,7 @@ impl<'a> Fitter<'a> {
             self.offer(backend, best, &x, look);
         }
         if self.opts.refine > 0 {
-            let pixel = self
-                .cameras
-                .iter()
-                .map(Camera::pixel_size)
-                .fold(f64::INFINITY, f64::min);
+            let pixel = self.pixel;
             let edges = if self.opts.coverage {
                 BOX_FILTER
             } else {
@@ -745,48 +739,6 @@ impl<'a> Fitter<'a> {
             self.offer(backend, best, &x, look);
         }
     }
-}
-
-/// The coarsest level, at most `levels`, at which every camera's image halves evenly to at
-/// least [`MIN_LEVEL_SIDE`] pixels a side.
-fn coarsest_level(cameras: &[Camera], levels: u32) -> u32 {
-    let mut max_level = 0u32;
-    while max_level < levels
-        && cameras.iter().all(|c| {
-            let k = 1u32 << (max_level + 1);
-            c.width % k == 0
-                && c.height % k == 0
-                && c.width / k >= MIN_LEVEL_SIDE
-                && c.height / k >= MIN_LEVEL_SIDE
-        })
-    {
-        max_level += 1;
-    }
-    max_level
-}
-
-/// Levels 1 to `max_level` of small images: each halves the previous level's cameras and
-/// pools its targets.
-fn halved_levels(
-    cameras: &[Camera],
-    targets: &[Target],
-    max_level: u32,
-) -> Vec<(Vec<Camera>, Vec<Target>)> {
-    let mut levels: Vec<(Vec<Camera>, Vec<Target>)> = Vec::new();
-    for _ in 0..max_level {
-        let (cams, tgts) = match levels.last() {
-            Some((c, t)) => (&c[..], &t[..]),
-            None => (cameras, targets),
-        };
-        let next = (
-            cams.iter()
-                .map(|c| c.with_size(c.width / 2, c.height / 2))
-                .collect(),
-            tgts.iter().map(Target::pooled).collect(),
-        );
-        levels.push(next);
-    }
-    levels
 }
 
 /// Step scale per slot: the model's size, or (relative steps) the slot's own magnitude

@@ -21,7 +21,8 @@
 //! [`parametric`] the model prepared for fitting (scenes and gradients at any slot values);
 //! [`fitter`] the fit itself ([`fit`], a [`Fitter`]); [`best`] the point it returns;
 //! [`loss`] the image loss; [`coverage`] pictures read as coverage; [`optimize`]
-//! the update rules and the spaces they move in; [`stages`], [`proportions`], [`albedo`],
+//! the update rules and the spaces they move in; `descent` a stage's run as it goes (its
+//! steps' trust region in pixels); [`stages`], [`proportions`], [`albedo`],
 //! [`polish`], [`frame`] the pieces named above; [`targets`] reads target folders; [`uncertainty`] the
 //! numbers' Fisher information at the fit's point; [`memo`] keeps the lighting and the
 //! judge's loss at recent points, so asking again at one does not render again.
@@ -32,6 +33,7 @@
 pub mod albedo;
 pub mod best;
 pub mod coverage;
+mod descent;
 pub mod fitter;
 pub mod frame;
 pub mod loss;

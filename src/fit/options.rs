@@ -70,6 +70,17 @@ pub struct FitOptions {
     // ---- how far a step may go ----------------------------------------------------------
     /// Largest change of one variable in one step (units of the model's size).
     pub max_step: f64,
+    /// Steps as a trust region in pixels: a stage's first step moves no face further than
+    /// this many of the round's edge softnesses (pixels of the finest camera, the last
+    /// round's softness at least), and the bound grows by [`REACH_GROW`] after a step that
+    /// lowered the loss and shrinks by [`REACH_SHRINK`] after one that raised it. A
+    /// softened edge's gradient says little about where it should be beyond its softness,
+    /// and Adam's steps are about the rate whatever the gradient (the first step of a
+    /// stage moves every variable by the full rate), so unbounded runs can end pixels from
+    /// an optimum they keep jumping over; but the same long steps also carry parts across
+    /// flat stretches of the loss, and neither wins everywhere (README), so the default is
+    /// 0: no bound.
+    pub reach: f64,
     /// Step each slot in units of its own magnitude (at least [`RELATIVE_FLOOR`] of the
     /// model's size) instead of the model's size.
     pub relative_steps: bool,
@@ -105,6 +116,7 @@ impl Default for FitOptions {
             coverage: true,
             loss: LossSpec::default(),
             max_step: 0.02,
+            reach: 0.0,
             fit_shading: true,
             per_item_albedo: true,
             min_extent: 0.002,
@@ -122,6 +134,13 @@ impl Default for FitOptions {
 }
 
 // ---- the algorithm's constants ----------------------------------------------------------
+
+/// The step's reach grows by this factor after a step that lowered the loss
+/// ([`FitOptions::reach`]).
+pub const REACH_GROW: f64 = 1.25;
+
+/// And shrinks by this one after a step that raised it.
+pub const REACH_SHRINK: f64 = 0.5;
 
 /// Adam's `floor` in the damped rerun of every stage ([`FitOptions::damped_rerun`]).
 pub const DAMPED_FLOOR: f64 = 0.05;

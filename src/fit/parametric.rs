@@ -83,6 +83,15 @@ impl Parametric {
             .collect();
     }
 
+    /// How far the face that moves most moves from slot values `a` to `b` (world units).
+    pub fn farthest_face_move(&self, a: &[f64], b: &[f64]) -> f64 {
+        self.faces
+            .iter()
+            .flatten()
+            .map(|(_, _, f)| (f.eval(b) - f.eval(a)).abs())
+            .fold(0.0, f64::max)
+    }
+
     /// The parts' geometry at slot values `x`.
     pub fn geoms(&self, x: &[f64]) -> Vec<PartGeom> {
         self.base
