@@ -143,6 +143,7 @@ fn fit_one(seed: u64, size: u32, source: &str) -> Option<(f64, f64)> {
     if !targets(&variant, &views, size, source, seed) {
         return None;
     }
+    let base_settings = base_settings();
     let opts = FitOpts {
         model: base.clone(),
         target: views,
@@ -151,8 +152,8 @@ fn fit_one(seed: u64, size: u32, source: &str) -> Option<(f64, f64)> {
         gallery: false,
         backend: CPU,
         settings: Settings {
-            reach: env_or("FIT_FAMILIES_REACH", base_settings().reach),
-            ..base_settings()
+            reach: env_or("FIT_FAMILIES_REACH", base_settings.reach),
+            ..base_settings
         },
     };
     let mut sources = SourceMap::new();

@@ -124,10 +124,8 @@ const REACH: f64 = 0.5;
 /// finest pixel; written beside the views.
 fn nudged(model: &Path, views: &Path, pixels: f64, seed: u64) -> PathBuf {
     let mut sources = SourceMap::new();
-    let (loaded, _) = reparamc::load_model_parsed(&mut sources, model).unwrap();
-    let truth = reparamc::load_model(&mut SourceMap::new(), model)
-        .unwrap()
-        .model;
+    let (loaded, evaluated) = reparamc::load_model_parsed(&mut sources, model).unwrap();
+    let truth = evaluated.model;
     let p = Parametric::new(&truth);
     let mut rng = reparamc::families::rng::Rng::new(seed);
     let dir: Vec<f64> =
