@@ -371,14 +371,15 @@ fn three_prompts_each_recover_their_own_kind() {
         .collect();
     let srv = start_for(models.clone(), Mode::Good);
     let dir = folder("three");
-    let mut args = vec!["--rounds", "30"];
+    let mut args = vec!["--rounds", "60"];
     for (k, _) in &targets {
         args.extend(["--prompt", k]);
     }
     let out = explore(&dir, &[&srv], &args);
     assert!(out.status.success(), "{}", stderr(&out));
-    // Thirty rounds at 64 pixels (the default is 400 at 256): each variation is recovered,
-    // IoU ≥ 0.9 with its hidden kind (the chair starts at 0.33, 0.76 and 0.75).
+    // Sixty rounds at 64 pixels (the default is 400 at 256): each variation is recovered,
+    // IoU ≥ 0.9 with its hidden kind (the chair starts at 0.33, 0.76 and 0.75; measured
+    // 0.933, 0.947, 0.922).
     let chair = model_of("chair.scad", CHAIR);
     for ((kind, target), name) in models.iter().zip(["bench", "stool", "bar_stool"]) {
         let text = std::fs::read_to_string(dir.join(format!("run/{name}.scad"))).unwrap();
@@ -403,9 +404,9 @@ fn three_prompts_each_recover_their_own_kind() {
         );
         let reached = iou((&a, &preset.csg), (&b, &target.csg));
         eprintln!("{kind}: preset IoU {reached:.3}");
-        // Issue 19 asks 0.95; measured 0.844, 0.917, 0.897 (README). This holds the
+        // Issue 19 asks 0.95; measured 0.891, 0.926, 0.949 (README). This holds the
         // presets to what they reach now, so that a change that loses them fails.
-        assert!(reached >= 0.8, "{kind}: preset IoU {reached:.3}");
+        assert!(reached >= 0.85, "{kind}: preset IoU {reached:.3}");
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -87,6 +87,11 @@ pub struct Args {
     /// Learning rate of the fit steps.
     #[arg(long, default_value_t = 0.05)]
     lr: f64,
+    /// Bound each round's steps: the first moves no face further than this many edge
+    /// softnesses, and the bound grows while the loss falls and halves when a step raised
+    /// it (0: no bound).
+    #[arg(long, default_value_t = reparamc::explore::rounds::EXPLORE_REACH)]
+    reach: f64,
     /// The run's seed (cameras and request seeds follow from it).
     #[arg(long, default_value_t = 0)]
     seed: u64,
@@ -126,6 +131,9 @@ fn options(args: &Args) -> Result<Options, String> {
     if !(args.lr.is_finite() && args.lr > 0.0) {
         return Err(format!("`--lr {}` must be positive", args.lr));
     }
+    if !(args.reach.is_finite() && args.reach >= 0.0) {
+        return Err(format!("`--reach {}` must be 0 or more", args.reach));
+    }
     let pick = args.pick.as_deref().map(parse_pick).transpose()?;
     let mut sampler = Sampler {
         denoising_strength: args.denoise,
@@ -164,6 +172,7 @@ fn options(args: &Args) -> Result<Options, String> {
             views: args.views,
             size: args.size,
             lr: args.lr,
+            reach: args.reach,
             seed: args.seed,
             sampler,
         },
