@@ -19,9 +19,9 @@ mod common;
 #[path = "../tests/explore_support/server.rs"]
 mod server;
 
+use common::anchored;
 use reparamc::families::Family;
 use reparamc::geom::iou;
-use common::anchored;
 use reparamc::ir::Model;
 use server::{Mode, model_of, start_for};
 use std::path::Path;
