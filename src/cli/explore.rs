@@ -9,8 +9,8 @@ use super::render::{input_error, say};
 use super::{EXIT_IO_ERROR, EXIT_MODEL_ERROR, EXIT_SERVER_ERROR};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use reparamc::command::explore::{
-    Llm, Options, Pool, RoundDone, Sampler, Settings, StopKind, Stopped, parse_pick, prepare,
-    presets_path,
+    EXPLORE_REACH, Llm, Options, Pool, RoundDone, Sampler, Settings, StopKind, Stopped, parse_pick,
+    prepare, presets_path,
 };
 use reparamc::front::source::SourceMap;
 use reparamc::output::write_atomic;
@@ -90,7 +90,7 @@ pub struct Args {
     /// Bound each round's steps: the first moves no face further than this many edge
     /// softnesses, and the bound grows while the loss falls and halves when a step raised
     /// it (0: no bound).
-    #[arg(long, default_value_t = reparamc::explore::rounds::EXPLORE_REACH)]
+    #[arg(long, default_value_t = EXPLORE_REACH)]
     reach: f64,
     /// The run's seed (cameras and request seeds follow from it).
     #[arg(long, default_value_t = 0)]

@@ -17,7 +17,7 @@ pub use crate::explore::diffusion::Pool;
 use crate::explore::gallery;
 pub use crate::explore::llm::Llm;
 use crate::explore::llm::{ask_kinds, pick};
-pub use crate::explore::rounds::Settings;
+pub use crate::explore::rounds::{EXPLORE_REACH, Settings};
 use crate::explore::rounds::{ExploreError, Explorer};
 use crate::explore::run::{PromptState, RunFolder, STATE_VERSION, State, names_of};
 use crate::front::source::SourceMap;
