@@ -352,10 +352,24 @@ impl Draft {
         {
             format!("{role} of every {what} ({n} numbers)")
         } else if n > 1 {
-            let mut distinct: Vec<String> =
-                self.owners.iter().map(|o| o.replace('_', " ")).collect();
-            distinct.dedup();
-            format!("{role} of the {} ({n} numbers)", list_words(&distinct))
+            // Owners without words (a literal parts of different roles share, in no one
+            // place) are not named; the description says only that there are others.
+            let mut distinct: Vec<String> = Vec::new();
+            for o in self.owners.iter().filter(|o| !o.is_empty()) {
+                let o = o.replace('_', " ");
+                if !distinct.contains(&o) {
+                    distinct.push(o);
+                }
+            }
+            if distinct.is_empty() {
+                format!("{role} ({n} numbers)")
+            } else {
+                if self.owners.iter().any(String::is_empty) {
+                    distinct.truncate(3);
+                    distinct.push("others".into());
+                }
+                format!("{role} of the {} ({n} numbers)", list_words(&distinct))
+            }
         } else if what.is_empty() {
             role
         } else {
@@ -665,5 +679,32 @@ mod tests {
         ];
         assert_eq!(common_words(&owners), vec!["leg"]);
         assert_eq!(common_words(&["leg", "leg_2", "leg_3"]), vec!["leg"]);
+    }
+
+    fn draft(owners: &[&str]) -> Draft {
+        Draft {
+            variable: None,
+            prefix: Vec::new(),
+            role: "carcass_width".into(),
+            place: Vec::new(),
+            source: Vec::new(),
+            owners: owners.iter().map(|o| o.to_string()).collect(),
+            said: None,
+        }
+    }
+
+    #[test]
+    fn a_description_names_no_owner_that_has_no_words() {
+        // Two module arguments whose parts share neither a role nor a place (a generated
+        // family's two bookcase units) had been described "Carcass width of the  (2
+        // numbers)".
+        let d = draft(&["", ""]).description("unit0_carcass_width");
+        assert_eq!(d, "Carcass width (2 numbers)");
+        let d = draft(&["side_board", ""]).description("unit0_carcass_width");
+        assert_eq!(d, "Carcass width of the side board and others (2 numbers)");
+        let d = draft(&["seat", "", "back"]).description("unit0_carcass_width");
+        assert_eq!(d, "Carcass width of the seat, back and others (3 numbers)");
+        let d = draft(&["seat", "back"]).description("unit0_carcass_width");
+        assert_eq!(d, "Carcass width of the seat and back (2 numbers)");
     }
 }
