@@ -44,22 +44,9 @@ fn iou_of(a: &Model, b: &Model) -> f64 {
 
 /// The output's preset `name` as OpenSCAD evaluates it, if it does.
 fn preset(dir: &Path, name: &str) -> Option<Model> {
-    let csg = dir.join(format!("preset_{name}.csg"));
-    let ok = Command::new("openscad")
-        .arg("-o")
-        .arg(&csg)
-        .arg(dir.join("out.scad"))
-        .arg("-p")
-        .arg(dir.join("out.json"))
-        .args(["-P", name])
-        .output()
-        .ok()?
-        .status
-        .success();
-    if !ok {
-        return None;
-    }
-    Some(model_of("preset.csg", &std::fs::read_to_string(&csg).ok()?))
+    let (out, csg) = common::openscad_preset(&dir.join("out.scad"), name);
+    let csg = csg.filter(|_| out.status.success())?;
+    Some(model_of("preset.csg", &csg))
 }
 
 /// What one family's exploration gave.

@@ -413,16 +413,7 @@ fn three_prompts_each_recover_their_own_kind() {
 
 /// The output's preset `name` as OpenSCAD evaluates it (its `.csg` export, loaded).
 fn preset_model(dir: &Path, name: &str) -> Model {
-    let csg = dir.join(format!("preset_{name}.csg"));
-    let out = Command::new("openscad")
-        .arg("-o")
-        .arg(&csg)
-        .arg(dir.join("chair_param.scad"))
-        .arg("-p")
-        .arg(dir.join("chair_param.json"))
-        .args(["-P", name])
-        .output()
-        .unwrap();
+    let (out, csg) = common::openscad_preset(&dir.join("chair_param.scad"), name);
     assert!(out.status.success(), "{}", stderr(&out));
-    model_of("preset.csg", &std::fs::read_to_string(&csg).unwrap())
+    model_of("preset.csg", &csg.expect("openscad wrote no .csg"))
 }

@@ -38,11 +38,29 @@ pub fn scad_files(dir: &str) -> Vec<PathBuf> {
 /// Runs `openscad -o <tmp>.<ext> model`: what it printed and exited with, and the file it
 /// wrote, if any.
 pub fn openscad_export(model: &Path, ext: &str) -> (std::process::Output, Option<String>) {
+    openscad_export_with(model, ext, &[])
+}
+
+/// [`openscad_export`] of the parameter set `set` of the parameter file beside `model`
+/// (`model.json`, as `reparamc` writes its presets): the preset as OpenSCAD evaluates it.
+pub fn openscad_preset(model: &Path, set: &str) -> (std::process::Output, Option<String>) {
+    let json = model.with_extension("json");
+    let args = ["-p".as_ref(), json.as_os_str(), "-P".as_ref(), set.as_ref()];
+    openscad_export_with(model, "csg", &args)
+}
+
+/// [`openscad_export`] with further arguments.
+fn openscad_export_with(
+    model: &Path,
+    ext: &str,
+    extra: &[&std::ffi::OsStr],
+) -> (std::process::Output, Option<String>) {
     let out = tempfile(model, ext);
     let run = Command::new("openscad")
         .arg("-o")
         .arg(&out)
         .arg(model)
+        .args(extra)
         .output()
         .expect("the `openscad` binary must be installed (see .ci/run)");
     let text = std::fs::read_to_string(&out).ok();
