@@ -1,26 +1,30 @@
-//! Optional parts: parts a variation can do without.
+//! Optional parts: parts a variation does without.
 //!
-//! A part is optional in a variation when the variation's geometry is explained at least as
-//! well without it, under the variations' noise model (`noise`): noise displaces the faces
-//! of the parts a variation has, and a part it does without has no faces to displace, so
-//! without the part, what removing it changes is nothing. What removing it changes, spread
-//! over the part's largest side in the variation, is its *visible thickness*; the part is
-//! dropped when that is within one noise deviation `σ` of nothing (a present part's faces
-//! are rarely that close together by chance) and below half of what the input shows of it,
-//! or, for exact variations (`sigma` 0: typed files, where a part is left out by typing a
-//! zero or hidden inside others), when it changes less than the float tolerance's share of
-//! the part's own volume and none of its extents is negative (a negative size that draws
-//! nothing is noise past zero). So a thin board whose numbers are noisy is still there. A part the
-//! input does not show either (hidden inside others) is never optional: leaving it out
-//! changes no variation, so there is nothing to switch. Parts optional in exactly the same
-//! set of variations form one toggle (a Customizer checkbox, on by default).
+//! Variations are the same program with other numbers, so a variation leaves a part out by
+//! typing a zero for one of its sizes (or a zero scale): the part then draws nothing. That
+//! is the test: removing the part changes less than the float tolerance's share of its own
+//! volume in the input, *and* one of its own extents is zero within the model's tolerance.
+//! Both halves matter:
+//! - A part that removing changes nothing because others cover it is still in the design:
+//!   noise or the variation moved it inside a neighbour (a wheel inside an axle whose noisy
+//!   radius came out larger), and its numbers still carry the design's relations. The
+//!   geometry is explained as well with it as without, so the prior (no switch) decides.
+//! - A size moved past zero (a negative radius that draws nothing) is a number noise moved,
+//!   and the part is still meant.
+//!
+//! So a thin board whose numbers are noisy is still there. A part the input does not show
+//! either (hidden inside others) is never optional: leaving it out changes no variation, so
+//! there is nothing to switch. Parts optional in exactly the same set of variations form
+//! one toggle (a Customizer checkbox, on by default). Fitted variations are judged the same
+//! way: a part a picture no longer shows keeps its numbers, and its deviations weigh its
+//! faces in discovery instead.
 
 use super::discover::Similarity;
 use crate::ir::feature::world_intervals;
-use crate::ir::{Model, Part};
+use crate::ir::{Model, Num, Part, Primitive};
 
 /// Volume changed by removing a part, as a fraction of its own volume in the input, below
-/// which it is optional whatever the noise.
+/// which removing it changes nothing.
 pub const OPTIONAL_THRESHOLD: f64 = crate::tolerance::OPTIONAL_PART_LOSS;
 
 /// A group of parts switched together, and the variations that do without them.
@@ -30,93 +34,56 @@ pub struct Toggle {
     pub off_in: Vec<usize>,
 }
 
-/// A part's box at the slot values `x`: (thinnest extent, largest side's area), from its
-/// world intervals when it has them, else its bounds at the input.
-fn box_at(part: &Part, x: &[f64]) -> (f64, f64) {
-    let extents: [f64; 3] = match world_intervals(part) {
-        Some(iv) => std::array::from_fn(|k| {
-            let at = |n: &crate::ir::Num| n.affine().map_or(n.value, |a| a.eval(x));
-            (at(&iv[k].1) - at(&iv[k].0)).abs()
-        }),
-        None => {
-            let (lo, hi) = part.world_bounds();
-            std::array::from_fn(|k| hi[k] - lo[k])
-        }
-    };
-    let thinnest = extents.iter().copied().fold(f64::INFINITY, f64::min);
-    let area = (0..3)
-        .map(|k| extents[(k + 1) % 3] * extents[(k + 2) % 3])
-        .fold(0.0, f64::max);
-    (thinnest, area)
+/// The part's extents at the slot values `x`, signed: along the world axes when the part is
+/// axis-aligned (so a zero scale counts), else its primitive's own sizes.
+fn extents_at(part: &Part, x: &[f64]) -> Vec<f64> {
+    let at = |n: &Num| n.affine().map_or(n.value, |a| a.eval(x));
+    if let Some(iv) = world_intervals(part) {
+        return iv.iter().map(|(lo, hi)| at(hi) - at(lo)).collect();
+    }
+    match &part.primitive {
+        Primitive::Cube { size, .. } => size.iter().map(at).collect(),
+        Primitive::Cylinder { h, r1, r2, .. } => vec![at(h), at(r1).max(at(r2))],
+        Primitive::Sphere { r } => vec![at(r)],
+    }
 }
 
-/// Whether the part has a negative extent (beyond `eps`) at `x`: a size moved past zero.
-fn negative_sized(part: &Part, x: &[f64], eps: f64) -> bool {
-    let Some(iv) = world_intervals(part) else {
-        return false;
-    };
-    let at = |n: &crate::ir::Num| n.affine().map_or(n.value, |a| a.eval(x));
-    iv.iter().any(|(lo, hi)| at(hi) - at(lo) < -eps)
+/// Whether one of the part's extents at `x` is zero within `eps`: a size typed as zero.
+fn zero_sized(part: &Part, x: &[f64], eps: f64) -> bool {
+    extents_at(part, x).iter().any(|e| e.abs() <= eps)
 }
 
-/// For each variation, the parts it does without, for variations whose faces carry noise
-/// of `sigma` (world units; 0 for exact variations).
+/// For each variation, the parts it does without.
 ///
-/// A part whose removal the similarity's cheap lower bound already shows too visible is
-/// present without an exact removal integral, and what the input shows of a part is
-/// integrated only when its bound cannot answer. The answer is the same either way.
+/// Only a part with a zero extent is judged by its removal, so most parts cost nothing;
+/// what the input shows of a part is integrated only for those.
 pub fn optional_parts<S: Similarity>(
     model: &Model,
     variations: &[Vec<f64>],
     sim: &S,
-    sigma: f64,
 ) -> Vec<Vec<usize>> {
     let x0 = model.slot_values();
     let input = sim.reference(&x0, &[]);
-    let parts = model.parts.len();
-    // What removing each part changes at the input: a cheap lower bound first, the exact
-    // loss only when the bound cannot answer (both cached over the variations).
-    let mut bound_at_input: Vec<Option<f64>> = vec![None; parts];
-    let mut shown: Vec<Option<f64>> = vec![None; parts];
-    let mut shows = |p: usize, past: &dyn Fn(f64) -> bool| -> bool {
-        let bound =
-            *bound_at_input[p].get_or_insert_with(|| sim.removal_loss_lower_bound(&input, p));
-        past(bound) || past(*shown[p].get_or_insert_with(|| sim.removal_loss(&input, p)))
-    };
-    let at_input: Vec<(f64, f64)> = model.parts.iter().map(|p| box_at(p, &x0)).collect();
     let eps = crate::tolerance::Tolerance::for_size(model.size()).epsilon;
+    // Whether the input shows each part (cached over the variations).
+    let mut shown: Vec<Option<bool>> = vec![None; model.parts.len()];
     let mut out = Vec::with_capacity(variations.len());
     for v in variations {
+        let zeroed: Vec<usize> = (0..model.parts.len())
+            .filter(|&p| zero_sized(&model.parts[p], v, eps))
+            .collect();
+        if zeroed.is_empty() {
+            out.push(Vec::new());
+            continue;
+        }
         let whole = sim.reference(v, &[]);
         let mut off = Vec::new();
-        for (p, &(thickness, area)) in at_input.iter().enumerate() {
-            // The visible thickness in `v` of a loss, relative to the input's thickness.
-            let (_, area_v) = box_at(&model.parts[p], v);
-            let relative = |loss: f64| {
-                if area_v > 0.0 {
-                    loss * area / area_v
-                } else {
-                    loss
-                }
-            };
-            let bound = sim.removal_loss_lower_bound(&whole, p);
-            let surely_present = bound >= OPTIONAL_THRESHOLD
-                && (sigma <= 0.0 || relative(bound) * thickness > sigma);
-            if surely_present || !shows(p, &|s| s >= OPTIONAL_THRESHOLD) {
-                continue;
-            }
-            let loss = sim.removal_loss(&whole, p);
-            let optional = if sigma <= 0.0 {
-                // Exact variations: a part is left out by a zero or hidden inside others,
-                // not by a size that only happens to draw nothing (a negative radius is a
-                // number the noise moved past zero, and the part is still meant).
-                loss < OPTIONAL_THRESHOLD && !negative_sized(&model.parts[p], v, eps)
-            } else {
-                loss < OPTIONAL_THRESHOLD
-                    || (relative(loss) * thickness <= sigma
-                        && shows(p, &|s| relative(loss) < 0.5 * s))
-            };
-            if optional {
+        for p in zeroed {
+            let shows = *shown[p].get_or_insert_with(|| {
+                sim.removal_loss_lower_bound(&input, p) >= OPTIONAL_THRESHOLD
+                    || sim.removal_loss(&input, p) >= OPTIONAL_THRESHOLD
+            });
+            if shows && sim.removal_loss(&whole, p) < OPTIONAL_THRESHOLD {
                 off.push(p);
             }
         }

@@ -190,10 +190,10 @@ pub fn reparameterize_telling(
     // Optional parts: what each variation does without, kept at the input's shape.
     let sim = VolumeSimilarity::new(model);
     let faces = Faces::of(model);
-    // Typed variations drop a part by a zero or by leaving it out, so nothing of a part a
-    // variation does without is left for noise to displace: the absent test is exact.
-    // (A fitted variation's deviations weigh its faces in discovery, not this test.)
-    let optional = optional_parts(model, &raw, &sim, 0.0);
+    // A variation drops a part by a zero, so the absent test is exact (a part merely
+    // covered by others keeps its numbers; a fitted variation's deviations weigh its faces
+    // in discovery, not this test).
+    let optional = optional_parts(model, &raw, &sim);
     let values = held_where_skipped(model, &raw, &optional);
     let samples = samples_of(model, &faces, (&values, &optional), variations);
     // Discovery (or the prior): which relations to keep.

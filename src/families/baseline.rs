@@ -23,7 +23,7 @@ pub fn paper_method(model: &Model, raw: &[Vec<f64>]) -> Output {
     let candidates = find_candidates(model);
     let sim = VolumeSimilarity::new(model);
     // The paper's own test: a part is optional when removing it changes nothing.
-    let optional = optional_parts(model, raw, &sim, 0.0);
+    let optional = optional_parts(model, raw, &sim);
     let samples: Vec<Sample> = raw
         .iter()
         .zip(&optional)

@@ -183,8 +183,8 @@ pub fn reach(
     held_out: &[Vec<f64>],
 ) -> f64 {
     let faces = Faces::of(model);
-    // Held-out variations are exact: a part is dropped when removing it changes nothing.
-    let optional = optional_parts(model, held_out, sim, 0.0);
+    // Held-out variations are exact: a part is dropped where a zero leaves it out.
+    let optional = optional_parts(model, held_out, sim);
     held_out
         .iter()
         .zip(&optional)

@@ -132,7 +132,7 @@ pub fn evaluate(name: &str, seed: u64) -> Row {
     let candidates = find_candidates(&model);
     let sim = VolumeSimilarity::new(&model);
     let clean_values: Vec<Vec<f64>> = clean.iter().map(|v| v.values.clone()).collect();
-    let optional = optional_parts(&model, &clean_values, &sim, 0.0);
+    let optional = optional_parts(&model, &clean_values, &sim);
     let tol = 1e-6 * size;
     // The clean truth: relations every clean variation keeps (ignoring parts it does without).
     let common: Vec<&Affine> = candidates
