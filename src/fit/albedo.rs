@@ -267,6 +267,7 @@ mod tests {
             grey,
             background: [1.0; 3],
             border: 0,
+            hard_edges: false,
         };
         (hard, t)
     }
@@ -363,6 +364,7 @@ mod tests {
                     grey,
                     background: [1.0; 3],
                     border: 0,
+                    hard_edges: false,
                 }
             })
             .collect();

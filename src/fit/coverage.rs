@@ -52,13 +52,15 @@ const MIXED_RIM_SHARE: f64 = 0.25;
 /// background and the surface further in counts as mixed, when telling a hard picture.
 const MIXED_SHARE: (f32, f32) = (0.1, 0.9);
 
-/// A picture's channels as coverage: `(m, s)`, foreground coverage and premultiplied grey.
+/// A picture's channels as coverage: `(m, s, hard)`, foreground coverage, premultiplied
+/// grey, and whether the picture was drawn with hard edges (point-sampled: read whole).
 /// `lo` and `hi` are the colour distances from `background` below which a pixel is
 /// background and above which it is surely foreground (a noisy picture raises them).
-pub fn unmix(img: &Rgb, background: [f32; 3], lo: f32, hi: f32) -> (Vec<f32>, Vec<f32>) {
+pub fn unmix(img: &Rgb, background: [f32; 3], lo: f32, hi: f32) -> (Vec<f32>, Vec<f32>, bool) {
     let px = Pixels::new(img, background, lo, hi);
     if px.hard_edges() {
-        return whole(img, &px.d, background, lo, hi);
+        let (m, s) = whole(img, &px.d, background, lo, hi);
+        return (m, s, true);
     }
     let solid: Vec<bool> = (0..px.d.len())
         .map(|i| px.neighbours(i).all(|j| j.is_some_and(|j| px.fg(j))))
@@ -88,7 +90,7 @@ pub fn unmix(img: &Rgb, background: [f32; 3], lo: f32, hi: f32) -> (Vec<f32>, Ve
                 s[x] = (luminance(&c) - (1.0 - m[x]) * lb).max(0.0);
             }
         });
-    (m, s)
+    (m, s, false)
 }
 
 /// The channels of a picture with hard edges: every pixel is background or covered whole
@@ -348,7 +350,7 @@ mod tests {
     #[test]
     fn an_antialiased_edge_reads_as_its_coverage() {
         let (img, want) = square([0.6, 0.4, 0.1]);
-        let (m, s) = unmix(&img, [1.0; 3], 0.012, 0.03);
+        let (m, s, _) = unmix(&img, [1.0; 3], 0.012, 0.03);
         for (i, (&a, &b)) in m.iter().zip(&want).enumerate() {
             // Pixels covered less than the noise gate read as background.
             let tol = if b < 0.05 { 0.05 } else { 1e-4 };
@@ -390,7 +392,7 @@ mod tests {
                 img.data[i] = std::array::from_fn(|k| 1.0 - a + shade * f[k]);
             }
         }
-        let (m, _) = unmix(&img, [1.0; 3], 0.012, 0.03);
+        let (m, _, _) = unmix(&img, [1.0; 3], 0.012, 0.03);
         for (i, (&a, &b)) in m.iter().zip(&want).enumerate() {
             let tol = if b < 0.05 { 0.05 } else { 1e-3 };
             assert!((a - b).abs() <= tol, "pixel {i}: {a} vs {b}");
@@ -422,7 +424,7 @@ mod tests {
     #[test]
     fn a_hard_picture_of_pale_facets_reads_whole() {
         let (img, want) = pale_facets(2.0, 15.0, 2.0, 11.0);
-        let (m, _) = unmix(&img, [1.0, 1.0, 0.9], 0.012, 0.03);
+        let (m, _, _) = unmix(&img, [1.0, 1.0, 0.9], 0.012, 0.03);
         assert_eq!(m, want);
     }
 
@@ -439,7 +441,7 @@ mod tests {
                 };
             }
         }
-        let (m, _) = unmix(&img, [1.0; 3], 0.012, 0.03);
+        let (m, _, _) = unmix(&img, [1.0; 3], 0.012, 0.03);
         for y in 0..10 {
             for x in 0..10 {
                 let inside = (2..8).contains(&x) && (2..8).contains(&y);

@@ -363,12 +363,21 @@ impl<'a> Fitter<'a> {
         }
     }
 
+    /// Whether the fit compares area coverage where [`FitOptions::coverage`] asks: unless
+    /// every picture was drawn with hard edges (point-sampled, as OpenSCAD draws). A
+    /// point-sampled picture is not the area coverage of the truth, so a loss on coverage
+    /// is least off the truth (edges moved by a fraction of a pixel, a 2-pixel board
+    /// thinned by a third); compared with a hard-edged render, the truth is its optimum.
+    fn area_coverage(&self) -> bool {
+        self.opts.coverage && !self.targets.iter().all(|t| t.hard_edges)
+    }
+
     /// The loss a fit is judged by, per view, at `x` (the lighting refitted there first):
-    /// the loss of the schedule's last pass: area coverage with [`FitOptions::coverage`],
+    /// the loss of the schedule's last pass: area coverage where [`Fitter::area_coverage`],
     /// else hard-edged with [`FitOptions::refine`], else at the last round's softness; plus the regulariser, counted in the first view.
     fn judge(&self, backend: &mut dyn Backend, x: &[f64], look: &mut Look) -> ImageValues {
         self.refit_shades(backend, x, look);
-        let sigma = if self.opts.coverage {
+        let sigma = if self.area_coverage() {
             BOX_FILTER
         } else if self.opts.refine > 0 {
             HARD_SIGMA
@@ -412,10 +421,10 @@ impl<'a> Fitter<'a> {
     }
 
     /// Silhouette softness of round `r`: geometric from `sigma.0` to `sigma.1`; the box
-    /// filter in the last round with [`FitOptions::coverage`].
+    /// filter in the last round where [`Fitter::area_coverage`].
     fn sigma_at(&self, r: usize) -> f64 {
         let (first, last) = self.opts.sigma;
-        if self.opts.coverage && r + 1 == self.rounds {
+        if self.area_coverage() && r + 1 == self.rounds {
             BOX_FILTER
         } else if self.rounds == 1 {
             last
@@ -727,7 +736,7 @@ impl<'a> Fitter<'a> {
         }
         if self.opts.refine > 0 {
             let pixel = self.pixel;
-            let edges = if self.opts.coverage {
+            let edges = if self.area_coverage() {
                 BOX_FILTER
             } else {
                 HARD_SIGMA

@@ -61,6 +61,11 @@ pub struct Target {
     /// Pixels of background the fit put around the picture on every side
     /// ([`super::FitOptions::border`]); 0 for a picture as given.
     pub border: u32,
+    /// Whether the picture was drawn with hard edges, each pixel sampled at one point
+    /// (OpenSCAD's; [`super::coverage`] tells them): a loss on area coverage is then not
+    /// least at the truth, a hard-edged render's is. False for antialiased pictures, our
+    /// renders and pooled targets.
+    pub hard_edges: bool,
 }
 
 /// Colour distance below which a pixel is background, and above which it is foreground,
@@ -75,7 +80,7 @@ impl Target {
     pub fn from_rgb(img: &Rgb) -> Target {
         let grey = img.luminance();
         let (background, lo, hi) = foreground_thresholds(img);
-        let (m, s) = super::coverage::unmix(img, background, lo, hi);
+        let (m, s, hard_edges) = super::coverage::unmix(img, background, lo, hi);
         let grey = grey
             .iter()
             .zip(m.iter().zip(&s))
@@ -89,6 +94,7 @@ impl Target {
             grey,
             background,
             border: 0,
+            hard_edges,
         }
     }
 
@@ -108,10 +114,12 @@ impl Target {
             grey,
             background: [1.0; 3],
             border: 0,
+            hard_edges: false,
         }
     }
 
-    /// The target at half the size (2×2 average pooling of its channels).
+    /// The target at half the size (2×2 average pooling of its channels, which antialiases
+    /// it).
     pub fn pooled(&self) -> Target {
         let (m, w, h) = pool(&self.m, self.width, self.height);
         let s = pool(&self.s, self.width, self.height).0;
@@ -128,6 +136,7 @@ impl Target {
             grey,
             background: self.background,
             border: self.border / 2,
+            hard_edges: false,
         }
     }
 
@@ -153,6 +162,7 @@ impl Target {
             grey: pad(&self.grey),
             background: self.background,
             border: self.border + px,
+            hard_edges: self.hard_edges,
         }
     }
 
@@ -617,6 +627,7 @@ mod tests {
             m,
             background: [1.0; 3],
             border: 0,
+            hard_edges: false,
         };
         let b = t.with_border(2);
         assert_eq!((b.width, b.height), (7, 6));

@@ -47,8 +47,10 @@ pub struct FitOptions {
     pub sigma: (f64, f64),
     /// The last round, the finishing passes and the judge of the best point compare area
     /// coverage ([`crate::render::scene::BOX_FILTER`]: the exact share of each pixel a
-    /// silhouette covers) instead of sigmoid edges: what antialiased pictures show and
-    /// aliased ones sample, so the true numbers are its optimum to a fraction of a pixel.
+    /// silhouette covers) instead of sigmoid edges: what antialiased pictures show, so the
+    /// true numbers are its optimum to a fraction of a pixel. Pictures drawn with hard
+    /// edges (every one point-sampled, as OpenSCAD draws: `Target::hard_edges`) are
+    /// compared with hard edges instead, whose optimum they are.
     pub coverage: bool,
     pub loss: LossSpec,
     /// Weight of `‖x − x₀‖²` (slots in units of the model's size).

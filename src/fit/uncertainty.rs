@@ -12,7 +12,9 @@
 //!
 //! `J` is taken by central differences of the renders with exact area coverage per pixel,
 //! which is continuous in the numbers, with a step of `tolerance::UNCERTAINTY_STEP` of the
-//! model's size
+//! model's size, for hard-edged pictures too (their judge compares hard edges, whose
+//! derivative is zero almost everywhere; a pixel's area coverage is the point sample
+//! averaged over where the edge falls inside it, so its curvature is the same information)
 //! (one-sided where the other side would make a part undrawable). A column holds only the
 //! pixels a number moves, so columns are kept sparse. Pixels are not independent (edges
 //! are lines of pixels; the sharpening couples neighbours), so `τ` is a floor on the truth:
