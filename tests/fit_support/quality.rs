@@ -95,6 +95,18 @@ pub fn load(path: &Path) -> reparamc::ir::Model {
         .model
 }
 
+/// The numbers of the variant at `target` as slot values of the base's program, read as
+/// `--vary` reads a variation (a literal one file writes `-20` and the other `15` is the
+/// slot at 20 and at -15), or `None` when the variant is not the base's program with
+/// other numbers. Slots matched by name or index would compare `20` with `15` there.
+pub fn truth_in_base(base: &Path, target: &Path) -> Option<Vec<f64>> {
+    let mut sources = reparamc::front::source::SourceMap::new();
+    let (parsed, evaluated) = reparamc::load_model_parsed(&mut sources, base).ok()?;
+    reparamc::variation::load_variation(&mut sources, parsed.main, &evaluated.model, target)
+        .ok()
+        .map(|v| v.values)
+}
+
 /// The model at `path` written with slot values `x` and evaluated again (what `fit -o`
 /// writes).
 pub fn fitted_model(path: &Path, base: &reparamc::ir::Model, x: &[f64]) -> reparamc::ir::Model {
@@ -261,16 +273,17 @@ pub fn run_case(
             loss_at(at_fit, reparamc::fit::HARD_SIGMA),
         );
     }
+    let truth = truth_in_base(base_path, &case.target);
     if let Ok(v) = std::env::var("SLOTS") {
-        // `SLOTS=d`: the slots that ended more than d (default 0.3) from the truth (matched
-        // by name; a variant may have other slots).
+        // `SLOTS=d`: the slots that ended more than d (default 0.3) from the truth (in the
+        // base's terms; matched by name where the variant has other slots).
         let off: f64 = v.parse().unwrap_or(0.3);
         for (i, sl) in base.slots.iter().enumerate() {
-            let Some(t) = target
-                .slots
-                .iter()
-                .find(|t| t.name == sl.name)
-                .map(|t| t.value)
+            let by_name = || target.slots.iter().find(|t| t.name == sl.name);
+            let Some(t) = truth
+                .as_ref()
+                .map(|t| t[i])
+                .or_else(|| by_name().map(|t| t.value))
             else {
                 continue;
             };
@@ -295,13 +308,13 @@ pub fn run_case(
         reparamc::geom::iou((&fitted.parts, &fitted.csg), (&target.parts, &target.csg))
     };
     let iou = iou_of(&result.x);
-    if std::env::var("BLAME").is_ok() && base.slots.len() == target.slots.len() {
+    if let (true, Some(truth)) = (std::env::var("BLAME").is_ok(), &truth) {
         // Which slots cost the most IoU: each set to its true value alone.
         let mut gains: Vec<(f64, usize)> = (0..base.slots.len())
-            .filter(|&i| (result.x[i] - target.slots[i].value).abs() > 1e-9)
+            .filter(|&i| (result.x[i] - truth[i]).abs() > 1e-9)
             .map(|i| {
                 let mut x = result.x.clone();
-                x[i] = target.slots[i].value;
+                x[i] = truth[i];
                 (iou_of(&x) - iou, i)
             })
             .collect();
@@ -309,12 +322,12 @@ pub fn run_case(
         // And the IoU with the first k of them all set to the truth.
         let mut x = result.x.clone();
         for (g, i) in gains.iter().take(8) {
-            x[*i] = target.slots[*i].value;
+            x[*i] = truth[*i];
             eprintln!(
                 "  blame {:24} fit {:8.2} target {:8.2} IoU +{g:.3} (with the above {:.3})",
                 base.slots[*i].name,
                 result.x[*i],
-                target.slots[*i].value,
+                truth[*i],
                 iou_of(&x)
             );
         }
