@@ -174,8 +174,9 @@ pub const NOISE_MAX_SHARE: f64 = 0.05;
 pub const NOISE_CANCELLATION_SHARE: f64 = 0.25;
 
 /// Volume lost by removing a part, as a fraction of the part's own volume in the input,
-/// below which a variation does without the part (it is hidden inside others or shrunk to
-/// nothing). Relative to the part, not the model, so a small part of a large model counts.
+/// below which removing it changes nothing (hidden inside others or sized to nothing; a
+/// variation does without it only when one of its extents is zero: `analysis::optional`).
+/// Relative to the part, not the model, so a small part of a large model counts.
 pub const OPTIONAL_PART_LOSS: f64 = 1e-3;
 
 /// The smallest slider step (absolute, world units), so a range of zero width still gets
