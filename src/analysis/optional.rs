@@ -11,6 +11,9 @@
 //!   geometry is explained as well with it as without, so the prior (no switch) decides.
 //! - A size moved past zero (a negative radius that draws nothing) is a number noise moved,
 //!   and the part is still meant.
+//! - A zero extent alone does not say the part draws nothing: an axis-aligned cone's
+//!   extent is taken at the radius larger at the input, and a variation may set that one
+//!   to zero while the other still draws a cone. The removal says so.
 //!
 //! So a thin board whose numbers are noisy is still there. A part the input does not show
 //! either (hidden inside others) is never optional: leaving it out changes no variation, so
