@@ -40,6 +40,17 @@ pub fn pinv(m: &DMatrix<f64>) -> DMatrix<f64> {
     if m.is_empty() {
         return m.transpose();
     }
+    // One number (a one-row relation's conditional variance, most of discovery's calls):
+    // what the SVD gives, its inverse or 0, without the SVD.
+    if m.nrows() == 1 && m.ncols() == 1 && m[(0, 0)].is_finite() {
+        let v = m[(0, 0)];
+        return DMatrix::from_element(1, 1, if v == 0.0 { 0.0 } else { 1.0 / v });
+    }
+    svd_pinv(m)
+}
+
+/// [`pinv`] through the SVD, whatever the shape.
+fn svd_pinv(m: &DMatrix<f64>) -> DMatrix<f64> {
     let svd = m.clone().svd(true, true);
     let smax = svd.singular_values.iter().fold(0.0f64, |a, &s| a.max(s));
     let eps =
@@ -90,4 +101,18 @@ pub fn least_norm_solve(rows: &[(Vec<(SlotId, f64)>, f64)], slots: usize) -> (Ve
         }
     }
     (delta, residual)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn one_number_is_inverted_as_the_svd_inverts_it() {
+        for v in [1.0, -1.0, 3.7, -0.25, 1e-300, -4e12, 0.0, 7.0 / 3.0] {
+            let m = DMatrix::from_element(1, 1, v);
+            let (fast, svd) = (pinv(&m)[(0, 0)], svd_pinv(&m)[(0, 0)]);
+            assert_eq!(fast.to_bits(), svd.to_bits(), "{v}: {fast} against {svd}");
+        }
+    }
 }
