@@ -357,8 +357,9 @@ fn load_targets(
 }
 
 impl Job {
-    /// Optimiser steps of one run of every stage (reruns may add as many again; each
-    /// [`Progress`] says the true total).
+    /// Optimiser steps of one run of every stage (reruns may add as many again, and a
+    /// branch where a stage lost a part the rest of the schedule again; each [`Progress`]
+    /// says the true total).
     pub fn planned_steps(&self) -> usize {
         self.opts.rounds * self.opts.iterations
     }

@@ -2,7 +2,9 @@
 //! everything a fit fixes at its start (the bordered cameras and targets, the coarse levels,
 //! the size guards, the step scales) and runs the schedule as methods: the proportions
 //! search, each stage's rounds of optimiser steps (twice with a damped rerun), the
-//! finishing passes.
+//! finishing passes. Once per fit, where a stage lost a part ([`super::revive`]), the rest
+//! of the schedule runs from the stage's end and from that point with the part put back,
+//! and the fit goes on from the one its judge prefers.
 //!
 //! Invariants: every image loss goes through `Fitter::loss_at`, the one call of
 //! [`Backend::loss`]; a step never leaves a size guard nor makes a part that started
@@ -10,6 +12,7 @@
 //! after every pass, always on the hard surface at full size.
 
 use super::best::Best;
+use super::check::{FitError, check};
 use super::descent::Descent;
 use super::loss::{LossSpec, Target};
 use super::memo::Memo;
@@ -18,7 +21,7 @@ use super::options::{
     FitOptions, GUARD_SWEEPS, HARD_SIGMA, PROPORTIONS_POOLING, RELATIVE_FLOOR, STEP_HALVINGS,
 };
 use super::uncertainty::{AtPoint, Information};
-use super::{Parametric, Stage, albedo, frame, polish, proportions, stages};
+use super::{Parametric, Stage, albedo, frame, polish, proportions, revive, stages};
 use crate::ir::Affine;
 use crate::render::camera::Camera;
 use crate::render::scene::{BOX_FILTER, DEFAULT_SHADE, NSHADE};
@@ -27,27 +30,6 @@ use crate::render::{Backend, ImageValues};
 use crate::tolerance::GUARD_MARGIN;
 use rayon::prelude::*;
 use std::borrow::Cow;
-
-/// What went wrong before fitting could start.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-pub enum FitError {
-    #[error("the model has no parts in view of any camera")]
-    NothingInView,
-    #[error("the model has no parts")]
-    NoParts,
-    #[error("{0} cameras but {1} target images")]
-    Mismatch(usize, usize),
-    #[error("camera `{camera}` is {cw}×{ch} but its target image is {tw}×{th}")]
-    Size {
-        camera: String,
-        cw: u32,
-        ch: u32,
-        tw: u32,
-        th: u32,
-    },
-    #[error("the subspace basis has {0} rows but the model has {1} slots")]
-    Basis(usize, usize),
-}
 
 /// One optimiser step's record.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
@@ -88,46 +70,6 @@ pub struct Progress<'a> {
     /// Steps taken so far, this one included (reruns count).
     pub done: usize,
     pub total_steps: usize,
-}
-
-/// Checks targets against cameras and that something is in view.
-pub fn check(
-    problem: &Parametric,
-    cameras: &[Camera],
-    targets: &[Target],
-    backend: &mut dyn Backend,
-) -> Result<(), FitError> {
-    if cameras.len() != targets.len() {
-        return Err(FitError::Mismatch(cameras.len(), targets.len()));
-    }
-    for (c, t) in cameras.iter().zip(targets) {
-        if c.width != t.width || c.height != t.height {
-            return Err(FitError::Size {
-                camera: c.name.clone(),
-                cw: c.width,
-                ch: c.height,
-                tw: t.width,
-                th: t.height,
-            });
-        }
-    }
-    if problem.base.is_empty() {
-        return Err(FitError::NoParts);
-    }
-    let scene = problem.scene(&problem.x0);
-    let views: Vec<ViewPrep> = cameras
-        .iter()
-        .map(|c| prepare_view(&scene, c, None))
-        .collect();
-    let shades = vec![DEFAULT_SHADE; views.len()];
-    let seen = backend
-        .render(&scene, &views, None, &shades)
-        .iter()
-        .any(|(_, h)| h.mask().any(|m| m));
-    if !seen {
-        return Err(FitError::NothingInView);
-    }
-    Ok(())
 }
 
 /// Moves `y` onto `{y : f(x(y)) ≥ min}` for every guard it violates (a few sweeps of
@@ -587,13 +529,29 @@ impl<'a> Fitter<'a> {
         &self,
         backend: &mut dyn Backend,
         tally: &mut Tally,
+        x: Vec<f64>,
+        look: &mut Look,
+        best: &mut Best,
+    ) -> (Vec<f64>, Vec<Step>) {
+        self.run_from(backend, tally, 0, x, look, best)
+    }
+
+    /// The stages from the `first` on, from `x`. The run from the first stage branches
+    /// where a stage lost a part ([`Fitter::revived`]): the rest of the schedule runs from
+    /// the stage's end and from the point with the part put back (neither branches again),
+    /// and the one the judge prefers goes on. Every stage's end is offered to `best`.
+    fn run_from(
+        &self,
+        backend: &mut dyn Backend,
+        tally: &mut Tally,
+        first: usize,
         mut x: Vec<f64>,
         look: &mut Look,
         best: &mut Best,
     ) -> (Vec<f64>, Vec<Step>) {
         let mut curve = Vec::with_capacity(tally.total_steps);
-        let mut round = 0;
-        for stage in self.stages {
+        let mut round: usize = self.stages[..first].iter().map(|s| s.rounds).sum();
+        for (i, stage) in self.stages.iter().enumerate().skip(first) {
             let leg = Leg {
                 stage,
                 start: &x,
@@ -612,12 +570,46 @@ impl<'a> Fitter<'a> {
                 }
             }
             curve.extend(best_steps);
+            let revived = if first == 0 && i + 1 < self.stages.len() {
+                self.revived(&x, &best_x)
+            } else {
+                None
+            };
             x = best_x;
             round += stage.rounds;
             let mut judged = look.clone();
             self.offer(backend, best, &x, &mut judged);
+            if let Some(alt) = revived {
+                // The branch's steps are more work than the fit announced: the total grows.
+                let runs = if self.rerun.is_some() { 2 } else { 1 };
+                let rest: usize = self.stages[i + 1..].iter().map(|s| s.rounds).sum();
+                tally.total_steps += rest * self.opts.iterations * runs;
+                let mut look_b = look.clone();
+                let (xb, cb) = self.run_from(backend, tally, i + 1, alt, &mut look_b, best);
+                let (xa, ca) = self.run_from(backend, tally, i + 1, x, look, best);
+                let la = self.judge(backend, &xa, look).total() + self.reg(&xa).0;
+                let lb = self.judge(backend, &xb, &mut look_b).total() + self.reg(&xb).0;
+                if lb < la {
+                    *look = look_b;
+                    curve.extend(cb);
+                    return (xb, curve);
+                }
+                curve.extend(ca);
+                return (xa, curve);
+            }
         }
         (x, curve)
+    }
+
+    /// `end` with every part lost since `start` ([`revive::lost_parts`]) put back as it
+    /// stood there; `None` when none was lost or the point is not one a fit may stand on.
+    fn revived(&self, start: &[f64], end: &[f64]) -> Option<Vec<f64>> {
+        let lost = revive::lost_parts(&self.problem, start, end, self.pixel);
+        let mut x = end.to_vec();
+        for &p in &lost {
+            x = revive::restored(&self.problem, &x, start, p)?;
+        }
+        (!lost.is_empty() && self.valid(&x)).then_some(x)
     }
 
     /// One stage from `leg.start` with `optimizer`, its steps numbered from `leg.round0`.

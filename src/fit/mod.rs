@@ -32,6 +32,7 @@
 
 pub mod albedo;
 pub mod best;
+pub mod check;
 pub mod coverage;
 mod descent;
 pub mod fitter;
@@ -43,11 +44,13 @@ pub mod options;
 pub mod parametric;
 pub mod polish;
 pub mod proportions;
+pub mod revive;
 pub mod stages;
 pub mod targets;
 pub mod uncertainty;
 
-pub use fitter::{FitError, FitResult, Fitter, Progress, Step, check, fit, fit_measured};
+pub use check::{FitError, check};
+pub use fitter::{FitResult, Fitter, Progress, Step, fit, fit_measured};
 pub use options::{DAMPED_FLOOR, FitOptions, HARD_SIGMA};
 pub use parametric::Parametric;
 pub use polish::polish;

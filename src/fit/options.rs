@@ -137,6 +137,10 @@ impl Default for FitOptions {
 
 // ---- the algorithm's constants ----------------------------------------------------------
 
+/// A part counts as lost in a stage ([`super::revive`]) when the stage started it at least
+/// this many pixels across on every axis and left it under one on some axis.
+pub const LOST_FROM_PIXELS: f64 = 2.0;
+
 /// The step's reach grows by this factor after a step that lowered the loss
 /// ([`FitOptions::reach`]).
 pub const REACH_GROW: f64 = 1.25;
