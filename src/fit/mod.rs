@@ -19,7 +19,8 @@
 //!
 //! The module map: [`options`] holds the settings and the algorithm's constants;
 //! [`parametric`] the model prepared for fitting (scenes and gradients at any slot values);
-//! [`fitter`] the fit itself ([`fit`], a [`Fitter`]); [`best`] the point it returns;
+//! [`fitter`] the fit itself ([`fit`], a [`Fitter`]); [`check`] whether a fit can start;
+//! [`revive`] the parts a stage lost, offered back; [`best`] the point it returns;
 //! [`loss`] the image loss; [`coverage`] pictures read as coverage; [`optimize`]
 //! the update rules and the spaces they move in; `descent` a stage's run as it goes (its
 //! steps' trust region in pixels); [`stages`], [`proportions`], [`albedo`],
