@@ -6,7 +6,7 @@
 //! judge prefers (`Fitter::run_from`, once per fit).
 //!
 //! Why: a gradient step sees only what is visible. A part shrunk under a pixel gets no
-//! gradient back, and face moves in proportion to its extent ([`super::polish`]) cannot
+//! gradient back, and face moves in proportion to its extent ([`super::polish()`]) cannot
 //! regrow it. Adam's steps are alike in world units for every number, so a part's small
 //! size reaches its guard before a large misplacement of it is taken back (a bookcase's
 //! shelves, a camera's lens). Judging the part put back after one more round was tried
