@@ -271,10 +271,9 @@ impl<'a> Fitter<'a> {
     /// best point it stood on by the loss the schedule ends with ([`Fitter::judge`]): the
     /// start, or where the proportions search, a stage or a pass ended.
     pub fn run(&self, backend: &mut dyn Backend, progress: &mut dyn FnMut(&Progress)) -> FitResult {
-        let runs = if self.rerun.is_some() { 2 } else { 1 };
         let mut tally = Tally {
             done: 0,
-            total_steps: self.rounds * self.opts.iterations * runs,
+            total_steps: self.rounds * self.opts.iterations * self.runs(),
             report: progress,
         };
         let problem = &*self.problem;
@@ -330,10 +329,21 @@ impl<'a> Fitter<'a> {
             .get_or(x, || self.image_loss(backend, 0, x, sigma, look, false))
     }
 
-    /// Offers `x` to `best` by [`Fitter::judge`] plus the regulariser (refitting `look` at `x`).
+    /// [`Fitter::judge`]'s loss plus the regulariser at `x` (refitting `look` there): what
+    /// `best` and every choice between two runs compare.
+    fn score(&self, backend: &mut dyn Backend, x: &[f64], look: &mut Look) -> f64 {
+        self.judge(backend, x, look).total() + self.reg(x).0
+    }
+
+    /// Offers `x` to `best` by [`Fitter::score`] (refitting `look` at `x`).
     fn offer(&self, backend: &mut dyn Backend, best: &mut Best, x: &[f64], look: &mut Look) {
-        let loss = self.judge(backend, x, look).total() + self.reg(x).0;
+        let loss = self.score(backend, x, look);
         best.offer(x, loss);
+    }
+
+    /// How many times each stage runs: twice with a damped rerun.
+    fn runs(&self) -> usize {
+        if self.rerun.is_some() { 2 } else { 1 }
     }
 
     /// The Fisher information of the numbers at the fit's result, from the judge's loss
@@ -563,8 +573,8 @@ impl<'a> Fitter<'a> {
             if let Some(damped) = self.rerun {
                 let mut look_b = start_look;
                 let (xb, steps_b) = self.run_stage(backend, tally, &leg, damped, &mut look_b);
-                let la = self.judge(backend, &best_x, look).total() + self.reg(&best_x).0;
-                let lb = self.judge(backend, &xb, &mut look_b).total() + self.reg(&xb).0;
+                let la = self.score(backend, &best_x, look);
+                let lb = self.score(backend, &xb, &mut look_b);
                 if lb < la {
                     (*look, best_x, best_steps) = (look_b, xb, steps_b);
                 }
@@ -581,14 +591,13 @@ impl<'a> Fitter<'a> {
             self.offer(backend, best, &x, &mut judged);
             if let Some(alt) = revived {
                 // The branch's steps are more work than the fit announced: the total grows.
-                let runs = if self.rerun.is_some() { 2 } else { 1 };
                 let rest: usize = self.stages[i + 1..].iter().map(|s| s.rounds).sum();
-                tally.total_steps += rest * self.opts.iterations * runs;
+                tally.total_steps += rest * self.opts.iterations * self.runs();
                 let mut look_b = look.clone();
                 let (xb, cb) = self.run_from(backend, tally, i + 1, alt, &mut look_b, best);
                 let (xa, ca) = self.run_from(backend, tally, i + 1, x, look, best);
-                let la = self.judge(backend, &xa, look).total() + self.reg(&xa).0;
-                let lb = self.judge(backend, &xb, &mut look_b).total() + self.reg(&xb).0;
+                let la = self.score(backend, &xa, look);
+                let lb = self.score(backend, &xb, &mut look_b);
                 if lb < la {
                     *look = look_b;
                     curve.extend(cb);
