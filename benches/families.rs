@@ -9,7 +9,8 @@
 //! ours takes a fraction of a second); `FAMILIES_TRACE=1` prints
 //! every family's scores; `FAMILIES_DUMP=seed` prints one family's model in every style;
 //! `FAMILIES_WRITE=dir` writes each family as files for the command (`dir/seed<N>/`:
-//! `model.scad`, the noisy training variations `train<k>.scad`, the held-out `held<k>.scad`);
+//! `model.scad`, the noisy training variations `train<k>.scad`, the held-out `held<k>.scad`;
+//! with `FAMILIES_SETUP`, of that condition);
 //! `FAMILIES_SETUP=noise,training` runs one condition of your own instead of the rows.
 
 use rayon::prelude::*;
@@ -62,12 +63,8 @@ fn trace(setup: Setup, r: &FamilyResult) {
 }
 
 /// Writes seed `seed`'s model as `dir/seed<N>/model.scad`, its noisy training variations
-/// as `train<k>.scad` and its held-out ones as `held<k>.scad`.
-fn write_family(seed: u64, dir: &std::path::Path) {
-    let setup = Setup {
-        noise: 0.01,
-        training: 3,
-    };
+/// as `train<k>.scad` and its held-out ones as `held<k>.scad`, under `setup`.
+fn write_family(seed: u64, dir: &std::path::Path, setup: Setup) {
     let case = match Case::load(seed, setup, None) {
         Ok(c) => c,
         Err(e) => return eprintln!("skipped: {e}"),
@@ -110,14 +107,6 @@ fn main() {
         return;
     }
     let seeds = seeds();
-    // `FAMILIES_WRITE=dir` writes each family (1% noise, 3 training) as files the command
-    // reads, and stops.
-    if let Ok(dir) = std::env::var("FAMILIES_WRITE") {
-        for &seed in &seeds {
-            write_family(seed, std::path::Path::new(&dir));
-        }
-        return;
-    }
     let main_only = std::env::var("FAMILIES_ROWS").is_ok_and(|r| r == "main");
     let with_paper = std::env::var("FAMILIES_PAPER").map_or(true, |v| v != "0");
     let mut setups = vec![Setup {
@@ -136,6 +125,18 @@ fn main() {
             training: t.trim().parse().expect("training variations"),
         }
     });
+    // `FAMILIES_WRITE=dir` writes each family (of the custom condition, else 1% noise and
+    // 3 training) as files the command reads, and stops.
+    if let Ok(dir) = std::env::var("FAMILIES_WRITE") {
+        for &seed in &seeds {
+            write_family(
+                seed,
+                std::path::Path::new(&dir),
+                custom.unwrap_or(setups[0]),
+            );
+        }
+        return;
+    }
     if let Some(c) = custom {
         setups = vec![c];
     } else if !main_only {

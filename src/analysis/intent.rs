@@ -167,14 +167,16 @@ impl Scores {
 /// Where none does (every number of the model varies apart), every relation they move is
 /// a change of design, and pooling them would make those changes pass for the noise:
 /// nothing is pooled, and `σ` stays at the floor.
+///
+/// Returns the evidence to pool and, of it, the relations that cancel (the tellers).
 fn informative(
     cx: &Context<'_>,
     input: &[f64],
     samples: &[Sample],
     evidence: &[Evidence],
-) -> Vec<Evidence> {
+) -> (Vec<Evidence>, Vec<Evidence>) {
     let Some(first) = samples.first() else {
-        return Vec::new();
+        return (Vec::new(), Vec::new());
     };
     let moved: Vec<bool> = (0..first.values.len())
         .map(|s| samples.iter().any(|v| v.values[s] != first.values[s]))
@@ -186,14 +188,15 @@ fn informative(
                 .any(|r| r.slots().any(|s| moved[s as usize]))
         })
         .collect();
-    let told = moving
+    let tells: Vec<bool> = moving
         .iter()
-        .any(|&c| cancels(&rows_of(cx.candidates, c), input, samples, &cx.seen[c]));
-    if !told {
-        return Vec::new();
+        .map(|&c| cancels(&rows_of(cx.candidates, c), input, samples, &cx.seen[c]))
+        .collect();
+    if !tells.contains(&true) {
+        return (Vec::new(), Vec::new());
     }
     // A number no variation moved carries no noise: rows over such numbers add none.
-    moving
+    let pooled: Vec<Evidence> = moving
         .into_iter()
         .map(|c| {
             let seen = cx.seen[c].iter().filter(|s| **s).count();
@@ -201,7 +204,14 @@ fn informative(
             let dof = noisy_rows(rows.iter().copied(), |s| moved[s as usize]) * seen;
             Evidence { dof, ..evidence[c] }
         })
-        .collect()
+        .collect();
+    let tellers = pooled
+        .iter()
+        .zip(&tells)
+        .filter(|(_, t)| **t)
+        .map(|(e, _)| *e)
+        .collect();
+    (pooled, tellers)
 }
 
 /// How far a row's terms moved from the `input` at `x`, as one residual: the root sum of
@@ -294,8 +304,8 @@ pub fn select<S: Similarity>(
         .map(|c| scores.evidence[c].unwrap_or(Evidence::new(0.0, 0)))
         .collect();
     let ceiling = NOISE_MAX_SHARE * model.size();
-    let pooled = informative(&cx, &cx.input, samples, &all);
-    let noise = NoiseModel::estimate(&pooled, floor, ceiling);
+    let (pooled, tellers) = informative(&cx, &cx.input, samples, &all);
+    let noise = NoiseModel::estimate_told(&pooled, &tellers, floor, ceiling);
     cx.prior = prior_log_odds(model, candidates, &all, &noise, cx.size);
     let ratio = noise.likelihood_ratio(cx.size);
     let mut out = Selection {

@@ -28,7 +28,9 @@
 //! It never falls below `floor` (the model's float tolerance), so with exact variations
 //! exactly the relations some variation breaks are rejected, nor rises above a ceiling (a
 //! share of the model's size, `tolerance::NOISE_MAX_SHARE`): variations of one design are
-//! not that far apart, and broken relations alone must not pass for the noise.
+//! not that far apart, and broken relations alone must not pass for the noise. An estimate
+//! that reaches the ceiling has grown through broken relations; it starts again from the
+//! relations that cancel ([`NoiseModel::estimate_told`]).
 
 use serde::Serialize;
 
@@ -200,10 +202,29 @@ impl NoiseModel {
     /// The noise of the variations whose relations' evidence is `evidence`, never below
     /// `floor` nor above `ceiling` (see the module doc).
     pub fn estimate(evidence: &[Evidence], floor: f64, ceiling: f64) -> NoiseModel {
+        NoiseModel::estimate_told(evidence, &[], floor, ceiling)
+    }
+
+    /// [`NoiseModel::estimate`], where `tellers` is the evidence of the relations that
+    /// look like intent under noise (they cancel most of their numbers' changes in every
+    /// variation: `intent::informative`).
+    ///
+    /// The re-pooling only grows an estimate that starts too low, up to the end of the
+    /// cluster it starts in. Where most relations are broken and spread over every scale,
+    /// it can grow through them to the ceiling, which no noise of variations of one design
+    /// reaches (`tolerance::NOISE_MAX_SHARE`): exact variations read as noise of 5% of the
+    /// model. An estimate that reaches the ceiling has pooled broken relations, so it
+    /// starts again from the tellers' pooled variance, the evidence of noise that is left.
+    pub fn estimate_told(
+        evidence: &[Evidence],
+        tellers: &[Evidence],
+        floor: f64,
+        ceiling: f64,
+    ) -> NoiseModel {
         let floor = floor.max(f64::MIN_POSITIVE);
         let ceiling = ceiling.max(floor);
         let seen: Vec<Evidence> = evidence.iter().copied().filter(|e| e.dof > 0).collect();
-        let mut model = NoiseModel {
+        let model = NoiseModel {
             sigma: floor,
             floor,
             pooled: 0,
@@ -221,11 +242,25 @@ impl NoiseModel {
         let dofs: Vec<f64> = seen.iter().map(|e| e.dof as f64).collect();
         let v = 2.0 / (9.0 * median(&dofs));
         let quartile_of_chi2 = (1.0 - v + LOWER_QUARTILE_Z * v.sqrt()).max(0.0).powi(3);
-        let mut variance = quantile(&per_dof, 0.25) / quartile_of_chi2.max(f64::MIN_POSITIVE);
+        let start = quantile(&per_dof, 0.25) / quartile_of_chi2.max(f64::MIN_POSITIVE);
+        let grown = model.repooled(&seen, start, ceiling);
+        let (cost, dof) = tellers
+            .iter()
+            .fold((0.0, 0usize), |(c, d), e| (c + e.cost, d + e.dof));
+        if grown.sigma < ceiling || dof == 0 {
+            return grown;
+        }
+        model.repooled(&seen, cost / dof as f64, ceiling)
+    }
+
+    /// The estimate re-pooled from variance `start`: `σ` the pooled variance of the
+    /// relations it explains, until that set stops changing.
+    fn repooled(mut self, seen: &[Evidence], start: f64, ceiling: f64) -> NoiseModel {
+        let mut variance = start;
         let mut accepted: Vec<bool> = Vec::new();
         for _ in 0..MAX_ROUNDS {
-            model.sigma = variance.sqrt().clamp(floor, ceiling);
-            let now: Vec<bool> = seen.iter().map(|&e| model.explains(e)).collect();
+            self.sigma = variance.sqrt().clamp(self.floor, ceiling);
+            let now: Vec<bool> = seen.iter().map(|&e| self.explains(e)).collect();
             if now == accepted {
                 break;
             }
@@ -234,14 +269,14 @@ impl NoiseModel {
                 .zip(&now)
                 .filter(|(_, a)| **a)
                 .fold((0.0, 0usize), |(c, d), (e, _)| (c + e.cost, d + e.dof));
-            model.pooled = now.iter().filter(|a| **a).count();
+            self.pooled = now.iter().filter(|a| **a).count();
             accepted = now;
             if dof == 0 {
                 break;
             }
             variance = cost / dof as f64;
         }
-        model
+        self
     }
 }
 
@@ -346,6 +381,22 @@ mod tests {
             "{rejected_intent} intent relations rejected"
         );
         assert!(e[300..].iter().all(|&x| !m.explains(x)));
+    }
+
+    /// Exact variations of a model whose relations are mostly broken, at every scale: a
+    /// few relations cancel exactly (the tellers), the rest spread evenly from half a world
+    /// unit to a hundred. Re-pooled from the lower quartile, the estimate grows through
+    /// the broken ones to the ceiling; from the tellers it stays at the floor.
+    #[test]
+    fn exact_variations_are_not_read_as_noise_of_the_ceiling() {
+        let tellers = vec![Evidence::new(0.0, 1); 4];
+        let mut e = tellers.clone();
+        e.extend((1..=200).map(|i| Evidence::new((0.5 * i as f64).powi(2), 1)));
+        let (floor, ceiling) = (1e-6, 20.0);
+        let quartile = NoiseModel::estimate(&e, floor, ceiling);
+        assert_eq!(quartile.sigma, ceiling, "{quartile:?}");
+        let told = NoiseModel::estimate_told(&e, &tellers, floor, ceiling);
+        assert!(told.exact(), "{told:?}");
     }
 
     #[test]
