@@ -447,27 +447,6 @@ impl Block {
         col
     }
 
-    /// `a K bᵀ` for the parts of two rows inside the block, read off the dense `K` (and the
-    /// corrections not folded into it), when there is one: it needs `K` only at the rows'
-    /// own slots, where [`Block::dot`] of a column needs the whole column.
-    fn k_form(&self, k: &DMatrix<f64>, a: &Affine, b: &Affine) -> f64 {
-        let mut v = 0.0;
-        for &(s, x) in &a.terms {
-            let Some(&i) = self.index.get(&s) else {
-                continue;
-            };
-            for &(t, y) in &b.terms {
-                if let Some(&j) = self.index.get(&t) {
-                    v += x * y * k[(i, j)];
-                }
-            }
-        }
-        for (u, s) in &self.corrections {
-            v -= self.dot(a, u) * self.dot(b, u) / s;
-        }
-        v
-    }
-
     /// Takes `row` into `K` as a rank-one correction, folded into the dense `K` where there
     /// is one (a column then costs the row's terms, not one pass per correction).
     fn absorb(&mut self, row: &Affine) {
@@ -483,6 +462,46 @@ impl Block {
                 None => self.corrections.push((u, s)),
             }
         }
+    }
+
+    /// `row`'s terms inside this block, as `(position in the block, coefficient)` in the
+    /// row's order, and its dot with every correction: what [`Block::k_form_of`] and
+    /// [`dot_of`] read, so a Gram matrix looks each slot up once per row, not once
+    /// per pair of rows.
+    fn row_in_block(&self, row: &Affine) -> RowInBlock {
+        let terms: Vec<(usize, f64)> = row
+            .terms
+            .iter()
+            .filter_map(|&(s, a)| Some((*self.index.get(&s)?, a)))
+            .collect();
+        let corrections = self
+            .corrections
+            .iter()
+            .map(|(u, _)| dot_of(&terms, u))
+            .collect();
+        RowInBlock { terms, corrections }
+    }
+
+    /// `a K bᵀ` for the parts of two rows inside the block (taken in by
+    /// [`Block::row_in_block`]), read off the dense `K` and the corrections not folded into
+    /// it, when there is one: it needs `K` only at the rows' own slots, where
+    /// [`Block::dot`] of a column needs the whole column.
+    fn k_form_of(&self, k: &DMatrix<f64>, a: &RowInBlock, b: &RowInBlock) -> f64 {
+        let mut v = 0.0;
+        for &(i, x) in &a.terms {
+            for &(j, y) in &b.terms {
+                v += x * y * k[(i, j)];
+            }
+        }
+        for ((da, db), (_, s)) in a
+            .corrections
+            .iter()
+            .zip(&b.corrections)
+            .zip(&self.corrections)
+        {
+            v -= da * db / s;
+        }
+        v
     }
 
     /// `n · v` for the part of `row` inside the block and `v` over its slots.
@@ -652,19 +671,20 @@ impl Projector {
                 .dense
                 .get()
                 .filter(|_| !columns && block.gram.is_some());
+            let inside: Vec<RowInBlock> = rows.iter().map(|r| block.row_in_block(r)).collect();
             if let Some(dense) = dense {
-                for (i, a) in rows.iter().enumerate() {
-                    for (j, b) in rows.iter().enumerate() {
-                        m[(i, j)] += block.k_form(dense, a, b);
+                for (i, a) in inside.iter().enumerate() {
+                    for (j, b) in inside.iter().enumerate() {
+                        m[(i, j)] += block.k_form_of(dense, a, b);
                     }
                 }
                 continue;
             }
             // Per touched block: the columns K nᵢᵀ over its slots.
             let cols: Vec<Vec<f64>> = rows.iter().map(|r| block.k_column(r)).collect();
-            for (i, r) in rows.iter().enumerate() {
+            for (i, r) in inside.iter().enumerate() {
                 for (j, col) in cols.iter().enumerate() {
-                    m[(i, j)] += block.dot(r, col);
+                    m[(i, j)] += dot_of(&r.terms, col);
                 }
             }
             if columns {
@@ -705,6 +725,18 @@ impl Projector {
         }
         (out, cost)
     }
+}
+
+/// A row's terms inside one block and its dots with the block's corrections
+/// ([`Block::row_in_block`]).
+struct RowInBlock {
+    terms: Vec<(usize, f64)>,
+    corrections: Vec<f64>,
+}
+
+/// [`Block::dot`] of a row taken into the block, to the bit.
+fn dot_of(terms: &[(usize, f64)], v: &[f64]) -> f64 {
+    terms.iter().map(|&(i, a)| a * v[i]).sum()
 }
 
 /// Per block some rows touch (by representative): the columns `K nᵢᵀ` over its slots.
