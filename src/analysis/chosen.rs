@@ -108,8 +108,9 @@ impl Chosen {
         rows.iter().all(|r| self.basis.contains_terms(&r.terms))
     }
 
-    /// Takes out of the pool the candidates the chosen rows now imply, into `gone`. Only
-    /// candidates holding a pivot whose row changed can have become implied.
+    /// Takes out of the pool the candidates the chosen rows now imply, into `gone` (in
+    /// candidate order). Only candidates holding a pivot whose row changed can have become
+    /// implied; each is tested once, however many of those pivots it holds.
     pub fn drop_implied(
         &mut self,
         candidates: &Candidates,
@@ -117,16 +118,19 @@ impl Chosen {
         pool: &mut Pool,
         gone: &mut Vec<usize>,
     ) {
-        let mut pivots = self.basis.take_touched();
-        pivots.sort_unstable();
-        pivots.dedup();
-        for s in pivots {
-            for &k in &by_slot[s as usize] {
-                let k = k as usize;
-                if pool.is_alive(k) && self.implies(&rows_of(candidates, k)) {
-                    pool.kill(k);
-                    gone.push(k);
-                }
+        let mut touched: Vec<usize> = self
+            .basis
+            .take_touched()
+            .into_iter()
+            .flat_map(|s| by_slot[s as usize].iter().map(|&k| k as usize))
+            .filter(|&k| pool.is_alive(k))
+            .collect();
+        touched.sort_unstable();
+        touched.dedup();
+        for k in touched {
+            if self.implies(&rows_of(candidates, k)) {
+                pool.kill(k);
+                gone.push(k);
             }
         }
     }

@@ -47,9 +47,12 @@ impl RowBasis {
 
     /// `row` minus its components along the stored rows (round-off dropped), with the
     /// constant reduced alike.
-    fn reduce(&self, row: &[(SlotId, f64)], constant: f64) -> (HashMap<SlotId, f64>, f64) {
+    fn reduce(&self, row: &[(SlotId, f64)], constant: f64) -> (Terms, f64) {
         let scale = row.iter().fold(0.0f64, |m, &(_, a)| m.max(a.abs()));
-        let mut v: HashMap<SlotId, f64> = row.iter().copied().filter(|&(_, a)| a != 0.0).collect();
+        let mut v = Terms::default();
+        for &(s, a) in row.iter().filter(|&&(_, a)| a != 0.0) {
+            *v.entry(s) = a;
+        }
         let mut c = constant;
         for &(s, a) in row {
             if a == 0.0 {
@@ -58,7 +61,7 @@ impl RowBasis {
             if let Some(&k) = self.pivot_of.get(&s) {
                 let stored = &self.rows[k];
                 for &(t, b) in &stored.terms {
-                    *v.entry(t).or_insert(0.0) -= a * b;
+                    *v.entry(t) -= a * b;
                 }
                 c -= a * stored.constant;
             }
@@ -70,7 +73,7 @@ impl RowBasis {
     /// The representative of `row` modulo the span: zero at every pivot (so two rows that
     /// differ by a combination of stored rows reduce to the same terms), sorted by slot.
     pub fn reduced(&self, row: &[(SlotId, f64)]) -> Vec<(SlotId, f64)> {
-        let mut v: Vec<(SlotId, f64)> = self.reduce(row, 0.0).0.into_iter().collect();
+        let mut v = self.reduce(row, 0.0).0.terms;
         v.sort_by_key(|&(s, _)| s);
         v
     }
@@ -92,13 +95,14 @@ impl RowBasis {
 
     fn add_row(&mut self, row: &[(SlotId, f64)], constant: f64) -> bool {
         let (v, c) = self.reduce(row, constant);
-        let Some((&pivot, &p)) = v
+        let Some(&(pivot, p)) = v
+            .terms
             .iter()
-            .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()).then(b.0.cmp(a.0)))
+            .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()).then(b.0.cmp(&a.0)))
         else {
             return false;
         };
-        let mut terms: Vec<(SlotId, f64)> = v.iter().map(|(&s, &a)| (s, a / p)).collect();
+        let mut terms: Vec<(SlotId, f64)> = v.terms.iter().map(|&(s, a)| (s, a / p)).collect();
         terms.sort_by_key(|&(s, _)| s);
         let new = BasisRow {
             pivot,
@@ -114,13 +118,15 @@ impl RowBasis {
                 .terms
                 .iter()
                 .fold(0.0f64, |m, &(_, a)| m.max(a.abs()));
-            let mut m: HashMap<SlotId, f64> = stored.terms.iter().copied().collect();
-            for &(s, a) in &new.terms {
-                *m.entry(s).or_insert(0.0) -= f * a;
+            let mut m = Terms::default();
+            for &(s, a) in &stored.terms {
+                *m.entry(s) = a;
             }
-            m.remove(&pivot);
-            m.retain(|_, a| a.abs() > RELATIVE_ROUNDOFF * scale * BASIS_UPDATE_ZERO);
-            let mut r: Vec<(SlotId, f64)> = m.into_iter().collect();
+            for &(s, a) in &new.terms {
+                *m.entry(s) -= f * a;
+            }
+            m.retain(|s, a| s != pivot && a.abs() > RELATIVE_ROUNDOFF * scale * BASIS_UPDATE_ZERO);
+            let mut r = m.terms;
             r.sort_by_key(|&(s, _)| s);
             stored.terms = r;
             stored.constant -= f * new.constant;
@@ -147,6 +153,53 @@ impl RowBasis {
                 .filter(|&&(s, _)| s != row.pivot)
                 .map(|&(s, a)| a * x[s as usize])
                 .sum::<f64>())
+    }
+}
+
+/// A sparse row being reduced: its terms in the order their slots first came, looked up
+/// by a scan while they are few (a reduced row has a handful; a hash costs more) and through
+/// an index once they are many. Each slot's value is summed in the order its updates come,
+/// whatever the lookup, so the result does not depend on it.
+#[derive(Default)]
+struct Terms {
+    terms: Vec<(SlotId, f64)>,
+    index: HashMap<SlotId, usize>,
+}
+
+/// Terms a row may have before [`Terms`] looks them up through an index.
+const SCANNED_TERMS: usize = 24;
+
+impl Terms {
+    /// The value at `slot`, made 0 if there was none.
+    fn entry(&mut self, slot: SlotId) -> &mut f64 {
+        let at = if self.terms.len() <= SCANNED_TERMS {
+            self.terms.iter().position(|&(s, _)| s == slot)
+        } else {
+            if self.index.is_empty() {
+                self.index = (self.terms.iter().enumerate())
+                    .map(|(i, &(s, _))| (s, i))
+                    .collect();
+            }
+            self.index.get(&slot).copied()
+        };
+        let at = at.unwrap_or_else(|| {
+            self.terms.push((slot, 0.0));
+            if !self.index.is_empty() {
+                self.index.insert(slot, self.terms.len() - 1);
+            }
+            self.terms.len() - 1
+        });
+        &mut self.terms[at].1
+    }
+
+    /// Keeps the terms whose slot and value pass `keep`.
+    fn retain(&mut self, keep: impl Fn(SlotId, f64) -> bool) {
+        self.terms.retain(|&(s, a)| keep(s, a));
+        self.index.clear();
+    }
+
+    fn is_empty(&self) -> bool {
+        self.terms.is_empty()
     }
 }
 
