@@ -6,6 +6,7 @@
 //! the number of slots times the number of rows. Rows carry their constants, so the basis
 //! also says where a point satisfying them has its pivot slots ([`RowBasis::pivot_value`]).
 
+use crate::ir::affine::terms_plus_scaled;
 use crate::ir::{Affine, SlotId};
 use crate::tolerance::{BASIS_UPDATE_ZERO, RELATIVE_ROUNDOFF};
 use std::collections::HashMap;
@@ -66,7 +67,7 @@ impl RowBasis {
                 c -= a * stored.constant;
             }
         }
-        v.retain(|_, a| a.abs() > RELATIVE_ROUNDOFF * scale);
+        v.retain(|a| a.abs() > RELATIVE_ROUNDOFF * scale);
         (v, c)
     }
 
@@ -118,17 +119,12 @@ impl RowBasis {
                 .terms
                 .iter()
                 .fold(0.0f64, |m, &(_, a)| m.max(a.abs()));
-            let mut m = Terms::default();
-            for &(s, a) in &stored.terms {
-                *m.entry(s) = a;
-            }
-            for &(s, a) in &new.terms {
-                *m.entry(s) -= f * a;
-            }
-            m.retain(|s, a| s != pivot && a.abs() > RELATIVE_ROUNDOFF * scale * BASIS_UPDATE_ZERO);
-            let mut r = m.terms;
-            r.sort_by_key(|&(s, _)| s);
-            stored.terms = r;
+            let zero = RELATIVE_ROUNDOFF * scale * BASIS_UPDATE_ZERO;
+            // `x + (−f) y` is `x − f y` to the bit.
+            stored.terms = terms_plus_scaled(&stored.terms, &new.terms, -f)
+                .into_iter()
+                .filter(|&(s, a)| s != pivot && a.abs() > zero)
+                .collect();
             stored.constant -= f * new.constant;
             self.touched.push(stored.pivot);
         }
@@ -192,9 +188,9 @@ impl Terms {
         &mut self.terms[at].1
     }
 
-    /// Keeps the terms whose slot and value pass `keep`.
-    fn retain(&mut self, keep: impl Fn(SlotId, f64) -> bool) {
-        self.terms.retain(|&(s, a)| keep(s, a));
+    /// Keeps the terms whose value passes `keep`.
+    fn retain(&mut self, keep: impl Fn(f64) -> bool) {
+        self.terms.retain(|&(_, a)| keep(a));
         self.index.clear();
     }
 

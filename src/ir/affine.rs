@@ -65,38 +65,9 @@ impl Affine {
 
     /// `self + k·other`, merging the sorted term lists.
     pub fn add_scaled(&self, other: &Affine, k: f64) -> Self {
-        let mut terms = Vec::with_capacity(self.terms.len() + other.terms.len());
-        let (mut i, mut j) = (0, 0);
-        loop {
-            let a = self.terms.get(i);
-            let b = other.terms.get(j);
-            let (slot, coeff) = match (a, b) {
-                (Some(&(sa, ca)), Some(&(sb, cb))) if sa == sb => {
-                    i += 1;
-                    j += 1;
-                    (sa, ca + k * cb)
-                }
-                (Some(&(sa, ca)), Some(&(sb, _))) if sa < sb => {
-                    i += 1;
-                    (sa, ca)
-                }
-                (Some(&(sa, ca)), None) => {
-                    i += 1;
-                    (sa, ca)
-                }
-                (_, Some(&(sb, cb))) => {
-                    j += 1;
-                    (sb, k * cb)
-                }
-                (None, None) => break,
-            };
-            if coeff != 0.0 {
-                terms.push((slot, coeff));
-            }
-        }
         Affine {
             constant: self.constant + k * other.constant,
-            terms,
+            terms: terms_plus_scaled(&self.terms, &other.terms, k),
         }
     }
 
@@ -128,6 +99,45 @@ impl Affine {
             terms,
         }
     }
+}
+
+/// `a + k·b` for two term lists sorted by slot, sorted by slot (a merge), without the terms
+/// that come out exactly zero.
+pub fn terms_plus_scaled(
+    a_terms: &[(SlotId, f64)],
+    b_terms: &[(SlotId, f64)],
+    k: f64,
+) -> Vec<(SlotId, f64)> {
+    let mut terms = Vec::with_capacity(a_terms.len() + b_terms.len());
+    let (mut i, mut j) = (0, 0);
+    loop {
+        let a = a_terms.get(i);
+        let b = b_terms.get(j);
+        let (slot, coeff) = match (a, b) {
+            (Some(&(sa, ca)), Some(&(sb, cb))) if sa == sb => {
+                i += 1;
+                j += 1;
+                (sa, ca + k * cb)
+            }
+            (Some(&(sa, ca)), Some(&(sb, _))) if sa < sb => {
+                i += 1;
+                (sa, ca)
+            }
+            (Some(&(sa, ca)), None) => {
+                i += 1;
+                (sa, ca)
+            }
+            (_, Some(&(sb, cb))) => {
+                j += 1;
+                (sb, k * cb)
+            }
+            (None, None) => break,
+        };
+        if coeff != 0.0 {
+            terms.push((slot, coeff));
+        }
+    }
+    terms
 }
 
 #[cfg(test)]
