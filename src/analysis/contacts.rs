@@ -12,7 +12,9 @@
 //! is the noise model's ([`NoiseGaps`]). Closing the gap is a projection onto `side = 0`;
 //! its cost in the variation's metric (`gap² / nKnᵀ`, what the relations' test weighs) is
 //! what the noise explains when it is within `(z σ)²`. A side made of many noisy numbers
-//! (a part placed in nested frames) may open further than one made of two.
+//! (a part placed in nested frames) may open further than one made of two. Where no
+//! relation tells the noise, any noise up to the ceiling may have opened a gap, and a gap
+//! within the ceiling counts as touching ([`NoiseGaps::new`]).
 //!
 //! Invariant: every form returned is at least `−slack` at the input (it is a contact there).
 
@@ -60,11 +62,28 @@ pub struct NoiseGaps<'a> {
 }
 
 impl<'a> NoiseGaps<'a> {
-    pub fn new(faces: &'a Faces, samples: &'a [Sample], noise: &NoiseModel) -> NoiseGaps<'a> {
+    /// The test for `noise`. Where no relation tells the noise (`NoiseModel::told`), it may
+    /// be anything up to the `ceiling` (`tolerance::NOISE_MAX_SHARE` of the model): a gap
+    /// is then as likely under a noise somewhere in that range as under a change of design
+    /// of any scale up to about the ceiling itself, so a gap within it counts as touching.
+    /// The floor `σ` sits at in that case is the relations' conservative choice (a relation
+    /// kept wrongly costs a slider's reach), not the contacts' (a contact let go parts the
+    /// model at in-range settings).
+    pub fn new(
+        faces: &'a Faces,
+        samples: &'a [Sample],
+        noise: &NoiseModel,
+        ceiling: f64,
+    ) -> NoiseGaps<'a> {
+        let explained = if noise.told {
+            (noise.critical_z * noise.sigma).powi(2)
+        } else {
+            ceiling * ceiling
+        };
         NoiseGaps {
             faces,
             samples,
-            explained: (noise.critical_z * noise.sigma).powi(2),
+            explained,
             projectors: samples.iter().map(|_| None).collect(),
             none: Chosen::new(faces),
         }
@@ -158,6 +177,12 @@ mod tests {
     /// How many contact sides survive a variation that shortens the leg (the first 30 of
     /// the source) by `gap`, judged by the noise model at σ = 1.
     fn sides_kept(source: &str, gap: f64) -> usize {
+        sides_kept_under(source, gap, true, f64::INFINITY)
+    }
+
+    /// [`sides_kept`] where the noise is told (`σ = 1`) or not (`σ` at the floor), with
+    /// the noise's `ceiling`.
+    fn sides_kept_under(source: &str, gap: f64, told: bool, ceiling: f64) -> usize {
         let model = crate::front::test_model(source);
         let mut x1 = model.slot_values();
         let leg = x1.iter().position(|&v| v == 30.0).unwrap_or(0);
@@ -165,14 +190,25 @@ mod tests {
         let faces = Faces::of(&model);
         let samples = [Sample::new(x1.clone(), Vec::new())];
         let noise = NoiseModel {
-            sigma: 1.0,
+            sigma: if told { 1.0 } else { 1e-9 },
             floor: 1e-9,
-            pooled: 1,
+            pooled: usize::from(told),
             critical_z: INTENT_Z,
-            told: true,
+            told,
         };
-        let mut gaps = NoiseGaps::new(&faces, &samples, &noise);
+        let mut gaps = NoiseGaps::new(&faces, &samples, &noise, ceiling);
         common_contacts(&model, &[x1], &[Vec::new()], &mut gaps).len()
+    }
+
+    /// Where no relation tells the noise, it may be anything up to the ceiling: a top
+    /// lifted off its leg by less than the ceiling still rests on it, one lifted further
+    /// does not, and a told noise keeps its own test whatever the ceiling.
+    #[test]
+    fn an_untold_noise_keeps_the_contacts_any_noise_under_the_ceiling_explains() {
+        let flat = "cube([10, 10, 30]);\ntranslate([1, 1, 30]) cube([40, 40, 2]);\n";
+        assert!(sides_kept_under(flat, 3.0, false, 10.0) > 0);
+        assert_eq!(sides_kept_under(flat, 30.0, false, 10.0), 0);
+        assert_eq!(sides_kept_under(flat, 8.0, true, 100.0), 0);
     }
 
     /// A top resting on a leg, placed by one number or by three nested frames. Closing a

@@ -224,7 +224,8 @@ pub fn reparameterize_telling(
     let unshown: Vec<Vec<usize>> = samples.iter().map(Sample::unshown).collect();
     let contacts = match &choice.noise {
         Some(noise) => {
-            let mut gaps = NoiseGaps::new(&faces, &samples, noise);
+            let ceiling = crate::tolerance::NOISE_MAX_SHARE * model.size();
+            let mut gaps = NoiseGaps::new(&faces, &samples, noise, ceiling);
             common_contacts(model, &raw, &unshown, &mut gaps)
         }
         None => common_contacts(model, &raw, &unshown, &mut Slack(eps)),
