@@ -24,13 +24,18 @@
 //! numbers' changes in every variation; where none does, `σ` stays at the floor and
 //! [`NoiseModel::told`] says so): the pooled variance of the relations whose statistic
 //! chance reaches in all but [`FALSE_REJECTION`] of intent ones (a one-sided test at
-//! [`INTENT_Z`]), iterated from a low start until that set stops changing.
+//! [`INTENT_Z`]), iterated from a start until that set stops changing. That iteration has
+//! several fixed points (a cluster of relations seen once with small residuals, another
+//! seen in every variation with larger ones); it is run from a ladder of starts, and the
+//! fixed point kept is the one under which the relations' evidence is likeliest, intent
+//! and broken mixed in the share that fits best ([`NoiseModel::estimate_told`]): the same
+//! two hypotheses the decision weighs.
 //! It never falls below `floor` (the model's float tolerance), so with exact variations
 //! exactly the relations some variation breaks are rejected, nor rises above a ceiling (a
 //! share of the model's size, `tolerance::NOISE_MAX_SHARE`): variations of one design are
-//! not that far apart, and broken relations alone must not pass for the noise. An estimate
-//! that reaches the ceiling has grown through broken relations; it starts again from the
-//! relations that cancel ([`NoiseModel::estimate_told`]).
+//! not that far apart, and broken relations alone must not pass for the noise. A fixed
+//! point at the ceiling has grown through broken relations and is kept only when every
+//! start ends there.
 
 use serde::Serialize;
 
@@ -210,11 +215,14 @@ impl NoiseModel {
     /// variation: `intent::informative`).
     ///
     /// The re-pooling only grows an estimate that starts too low, up to the end of the
-    /// cluster it starts in. Where most relations are broken and spread over every scale,
-    /// it can grow through them to the ceiling, which no noise of variations of one design
-    /// reaches (`tolerance::NOISE_MAX_SHARE`): exact variations read as noise of 5% of the
-    /// model. An estimate that reaches the ceiling has pooled broken relations, so it
-    /// starts again from the tellers' pooled variance, the evidence of noise that is left.
+    /// cluster it starts in. So it starts from the lower quartile, from the tellers'
+    /// pooled variance and from [`LADDER`] quantiles of the relations' variance per degree
+    /// of freedom, and keeps the fixed point under which the evidence is likeliest as a
+    /// mixture of intent and broken relations (`mixture_log_likelihood`). Fixed points at
+    /// the ceiling, which no noise of variations of one design reaches
+    /// (`tolerance::NOISE_MAX_SHARE`), are left out unless all are there: re-pooled
+    /// through broken relations spread over every scale, exact variations would read as
+    /// noise of 5% of the model.
     pub fn estimate_told(
         evidence: &[Evidence],
         tellers: &[Evidence],
@@ -243,14 +251,32 @@ impl NoiseModel {
         let v = 2.0 / (9.0 * median(&dofs));
         let quartile_of_chi2 = (1.0 - v + LOWER_QUARTILE_Z * v.sqrt()).max(0.0).powi(3);
         let start = quantile(&per_dof, 0.25) / quartile_of_chi2.max(f64::MIN_POSITIVE);
-        let grown = model.repooled(&seen, start, ceiling);
         let (cost, dof) = tellers
             .iter()
             .fold((0.0, 0usize), |(c, d), e| (c + e.cost, d + e.dof));
-        if grown.sigma < ceiling || dof == 0 {
-            return grown;
+        let mut starts = vec![start];
+        if dof > 0 {
+            starts.push(cost / dof as f64);
         }
-        model.repooled(&seen, cost / dof as f64, ceiling)
+        starts.extend((0..=LADDER).map(|i| quantile(&per_dof, i as f64 / LADDER as f64)));
+        let mut points: Vec<NoiseModel> = Vec::new();
+        for s in starts {
+            let m = model.repooled(&seen, s, ceiling);
+            if !points.iter().any(|p| p.sigma == m.sigma) {
+                points.push(m);
+            }
+        }
+        // A fixed point at the ceiling has pooled broken relations (no noise of one
+        // design reaches it): it is chosen only when every start ends there.
+        if points.iter().any(|p| p.sigma < ceiling) {
+            points.retain(|p| p.sigma < ceiling);
+        }
+        let size = ceiling / crate::tolerance::NOISE_MAX_SHARE;
+        points
+            .into_iter()
+            .map(|m| (mixture_log_likelihood(&seen, m.sigma, floor, size), m))
+            .max_by(|a, b| a.0.total_cmp(&b.0))
+            .map_or(model, |(_, m)| m)
     }
 
     /// The estimate re-pooled from variance `start`: `σ` the pooled variance of the
@@ -278,6 +304,49 @@ impl NoiseModel {
         }
         self
     }
+}
+
+/// Starts of the re-pooling besides the lower quartile: this many quantiles of the
+/// relations' variance per degree of freedom.
+const LADDER: usize = 16;
+
+/// The log-likelihood of the relations' evidence at noise `sigma` under the mixture of
+/// intent (the residual is the noise) and broken (the noise plus a change of scale
+/// log-uniform from the `floor` to the model's `size`, whatever `sigma`), with the intent
+/// share fitted by expectation–maximisation.
+fn mixture_log_likelihood(seen: &[Evidence], sigma: f64, floor: f64, size: f64) -> f64 {
+    let noise = sigma * sigma;
+    let (lo, hi) = (floor.ln(), size.max(floor).ln());
+    let grid: Vec<f64> = (0..SCALE_GRID)
+        .map(|j| noise + (2.0 * (lo + (hi - lo) * (j as f64 + 0.5) / SCALE_GRID as f64)).exp())
+        .collect();
+    let log_normal = |e: &Evidence, v: f64| {
+        -0.5 * e.dof as f64 * (2.0 * std::f64::consts::PI * v).ln() - e.cost / (2.0 * v)
+    };
+    let pairs: Vec<(f64, f64)> = seen
+        .iter()
+        .map(|e| {
+            let l: Vec<f64> = grid.iter().map(|&v| log_normal(e, v)).collect();
+            let top = l.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+            let mean = l.iter().map(|x| (x - top).exp()).sum::<f64>() / SCALE_GRID as f64;
+            (log_normal(e, noise), top + mean.ln())
+        })
+        .collect();
+    let mut share: f64 = 0.5;
+    let mut total = f64::NEG_INFINITY;
+    for _ in 0..MAX_ROUNDS {
+        let (mut sum, mut intent) = (0.0, 0.0);
+        for &(n, b) in &pairs {
+            let (a, c) = (share.ln() + n, (1.0 - share).ln() + b);
+            let top = a.max(c);
+            let l = top + ((a - top).exp() + (c - top).exp()).ln();
+            sum += l;
+            intent += (a - l).exp();
+        }
+        total = sum;
+        share = (intent / pairs.len() as f64).clamp(1e-6, 1.0 - 1e-6);
+    }
+    total
 }
 
 /// The median of `values` (0 for none).
@@ -385,18 +454,39 @@ mod tests {
 
     /// Exact variations of a model whose relations are mostly broken, at every scale: a
     /// few relations cancel exactly (the tellers), the rest spread evenly from half a world
-    /// unit to a hundred. Re-pooled from the lower quartile, the estimate grows through
-    /// the broken ones to the ceiling; from the tellers it stays at the floor.
+    /// unit to a hundred. Re-pooled from the lower quartile alone, the estimate grows
+    /// through the broken ones to the ceiling; the fixed point the tellers start and the
+    /// likelihood keep it at the floor.
     #[test]
     fn exact_variations_are_not_read_as_noise_of_the_ceiling() {
         let tellers = vec![Evidence::new(0.0, 1); 4];
         let mut e = tellers.clone();
         e.extend((1..=200).map(|i| Evidence::new((0.5 * i as f64).powi(2), 1)));
         let (floor, ceiling) = (1e-6, 20.0);
-        let quartile = NoiseModel::estimate(&e, floor, ceiling);
-        assert_eq!(quartile.sigma, ceiling, "{quartile:?}");
+        let model = NoiseModel {
+            sigma: floor,
+            floor,
+            pooled: 0,
+            critical_z: INTENT_Z,
+            told: true,
+        };
+        let quartile = quantile(&e.iter().map(|x| x.cost).collect::<Vec<_>>(), 0.25);
+        assert_eq!(model.repooled(&e, quartile, ceiling).sigma, ceiling);
         let told = NoiseModel::estimate_told(&e, &tellers, floor, ceiling);
         assert!(told.exact(), "{told:?}");
+    }
+
+    /// Two fixed points: 60 relations of noise 0.05 seen once each (parts most variations
+    /// do without), and 60 of noise 0.6 seen in five variations. Re-pooled from below,
+    /// the estimate stops in the small cluster and rejects most of the large one; the
+    /// likelihood of the whole evidence prefers the noise that explains both.
+    #[test]
+    fn the_estimate_is_the_likeliest_of_its_fixed_points() {
+        let mut e = intent(60, 1, 0.05, 3);
+        e.extend(intent(60, 5, 0.6, 5));
+        e.extend((0..80).map(|i| Evidence::new(5.0 * (3.0 + 0.5 * i as f64).powi(2), 5)));
+        let m = NoiseModel::estimate(&e, 1e-6, 1e3);
+        assert!((m.sigma - 0.6).abs() < 0.15, "{m:?}");
     }
 
     #[test]
