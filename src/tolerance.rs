@@ -173,6 +173,11 @@ pub const NOISE_MAX_SHARE: f64 = 0.05;
 /// sum). A quarter of the squares is a residual at most half the numbers' typical change.
 pub const NOISE_CANCELLATION_SHARE: f64 = 0.25;
 
+/// How near 0 or 1 the intent share of the noise estimate's mixture may come
+/// (`analysis::noise`): at exactly 0 or 1 one hypothesis would be impossible, and its
+/// log-likelihood would stop the share from moving.
+pub const NOISE_MIXTURE_SHARE_MARGIN: f64 = 1e-6;
+
 /// Volume lost by removing a part, as a fraction of the part's own volume in the input,
 /// below which removing it changes nothing (hidden inside others or sized to nothing; a
 /// variation does without it only when one of its extents is zero: `analysis::optional`).

@@ -315,6 +315,7 @@ const LADDER: usize = 16;
 /// log-uniform from the `floor` to the model's `size`, whatever `sigma`), with the intent
 /// share fitted by expectation–maximisation.
 fn mixture_log_likelihood(seen: &[Evidence], sigma: f64, floor: f64, size: f64) -> f64 {
+    const MARGIN: f64 = crate::tolerance::NOISE_MIXTURE_SHARE_MARGIN;
     let noise = sigma * sigma;
     let (lo, hi) = (floor.ln(), size.max(floor).ln());
     let grid: Vec<f64> = (0..SCALE_GRID)
@@ -344,7 +345,7 @@ fn mixture_log_likelihood(seen: &[Evidence], sigma: f64, floor: f64, size: f64) 
             intent += (a - l).exp();
         }
         total = sum;
-        share = (intent / pairs.len() as f64).clamp(1e-6, 1.0 - 1e-6);
+        share = (intent / pairs.len() as f64).clamp(MARGIN, 1.0 - MARGIN);
     }
     total
 }
