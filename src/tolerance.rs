@@ -165,6 +165,11 @@ pub const NOISE_FALSE_REJECTION: f64 = 1e-3;
 /// the noise.
 pub const NOISE_MAX_SHARE: f64 = 0.05;
 
+/// The largest noise the noise model admits for a model of size `size` (world units).
+pub fn noise_ceiling(size: f64) -> f64 {
+    NOISE_MAX_SHARE * size
+}
+
 /// The most of its numbers' own changes a relation may keep as residual and still show
 /// that the variations have an intent relation to tell their noise by (`analysis::intent`):
 /// an intent relation's residual is the noise while its numbers move by the design's

@@ -28,7 +28,7 @@ use super::pool::Pool;
 use super::project::{Faces, Projection, Projector, RowCosts};
 use super::rowbasis::RowBasis;
 use crate::ir::{Affine, Model, SlotId};
-use crate::tolerance::{NOISE_CANCELLATION_SHARE, NOISE_MAX_SHARE, RELATIVE_ROUNDOFF, Tolerance};
+use crate::tolerance::{NOISE_CANCELLATION_SHARE, RELATIVE_ROUNDOFF, Tolerance, noise_ceiling};
 
 /// The order the test took the candidates in, its statistics and its answer.
 #[derive(Debug, Clone)]
@@ -303,7 +303,7 @@ pub fn select<S: Similarity>(
     let all: Vec<Evidence> = (0..n)
         .map(|c| scores.evidence[c].unwrap_or(Evidence::new(0.0, 0)))
         .collect();
-    let ceiling = NOISE_MAX_SHARE * model.size();
+    let ceiling = noise_ceiling(model.size());
     let (pooled, tellers) = informative(&cx, &cx.input, samples, &all);
     let noise = NoiseModel::estimate_told(&pooled, &tellers, floor, ceiling);
     cx.prior = prior_log_odds(model, candidates, &all, &noise, cx.size);

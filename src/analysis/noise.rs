@@ -106,12 +106,25 @@ pub struct LikelihoodRatio {
 }
 
 impl LikelihoodRatio {
-    /// The log-likelihood ratio of `e`: positive when the noise explains it better, 0 when
-    /// nothing is seen.
-    pub fn of(&self, e: Evidence) -> f64 {
-        if e.dof == 0 {
-            return 0.0;
+    /// The two hypotheses for noise `sigma`: intent (the residual is the noise) and broken
+    /// (the noise plus a change of scale log-uniform from `lo` to `hi`).
+    fn between(sigma: f64, lo: f64, hi: f64) -> LikelihoodRatio {
+        let noise = sigma * sigma;
+        let (lo, hi) = (lo.ln(), hi.ln());
+        let term = |v: f64| ((2.0 * std::f64::consts::PI * v).ln(), 2.0 * v);
+        let mut broken = [(0.0, 0.0); SCALE_GRID];
+        for (j, b) in broken.iter_mut().enumerate() {
+            let u = lo + (hi - lo) * (j as f64 + 0.5) / SCALE_GRID as f64;
+            *b = term(noise + (2.0 * u).exp());
         }
+        LikelihoodRatio {
+            intent: term(noise),
+            broken,
+        }
+    }
+
+    /// The log-likelihoods of `e` under intent and under broken.
+    fn log_likelihoods(&self, e: Evidence) -> (f64, f64) {
         let k = e.dof as f64;
         let log_normal = |(ln_two_pi_v, two_v): (f64, f64)| -0.5 * k * ln_two_pi_v - e.cost / two_v;
         let mut broken = [0.0; SCALE_GRID];
@@ -120,7 +133,17 @@ impl LikelihoodRatio {
         }
         let top = broken.iter().copied().fold(f64::NEG_INFINITY, f64::max);
         let mean = broken.iter().map(|l| (l - top).exp()).sum::<f64>() / SCALE_GRID as f64;
-        log_normal(self.intent) - (top + mean.ln())
+        (log_normal(self.intent), top + mean.ln())
+    }
+
+    /// The log-likelihood ratio of `e`: positive when the noise explains it better, 0 when
+    /// nothing is seen.
+    pub fn of(&self, e: Evidence) -> f64 {
+        if e.dof == 0 {
+            return 0.0;
+        }
+        let (intent, broken) = self.log_likelihoods(e);
+        intent - broken
     }
 }
 
@@ -190,18 +213,7 @@ impl NoiseModel {
     /// The ratio is made for a model of size `size`, its grid of broken scales worked out
     /// once for the many relations it will weigh ([`LikelihoodRatio::of`]).
     pub fn likelihood_ratio(&self, size: f64) -> LikelihoodRatio {
-        let noise = self.sigma * self.sigma;
-        let (lo, hi) = (self.sigma.ln(), size.max(self.sigma).ln());
-        let term = |v: f64| ((2.0 * std::f64::consts::PI * v).ln(), 2.0 * v);
-        let mut broken = [(0.0, 0.0); SCALE_GRID];
-        for (j, b) in broken.iter_mut().enumerate() {
-            let u = lo + (hi - lo) * (j as f64 + 0.5) / SCALE_GRID as f64;
-            *b = term(noise + (2.0 * u).exp());
-        }
-        LikelihoodRatio {
-            intent: term(noise),
-            broken,
-        }
+        LikelihoodRatio::between(self.sigma, self.sigma, size.max(self.sigma))
     }
 
     /// The noise of the variations whose relations' evidence is `evidence`, never below
@@ -316,23 +328,8 @@ const LADDER: usize = 16;
 /// share fitted by expectation–maximisation.
 fn mixture_log_likelihood(seen: &[Evidence], sigma: f64, floor: f64, size: f64) -> f64 {
     const MARGIN: f64 = crate::tolerance::NOISE_MIXTURE_SHARE_MARGIN;
-    let noise = sigma * sigma;
-    let (lo, hi) = (floor.ln(), size.max(floor).ln());
-    let grid: Vec<f64> = (0..SCALE_GRID)
-        .map(|j| noise + (2.0 * (lo + (hi - lo) * (j as f64 + 0.5) / SCALE_GRID as f64)).exp())
-        .collect();
-    let log_normal = |e: &Evidence, v: f64| {
-        -0.5 * e.dof as f64 * (2.0 * std::f64::consts::PI * v).ln() - e.cost / (2.0 * v)
-    };
-    let pairs: Vec<(f64, f64)> = seen
-        .iter()
-        .map(|e| {
-            let l: Vec<f64> = grid.iter().map(|&v| log_normal(e, v)).collect();
-            let top = l.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-            let mean = l.iter().map(|x| (x - top).exp()).sum::<f64>() / SCALE_GRID as f64;
-            (log_normal(e, noise), top + mean.ln())
-        })
-        .collect();
+    let ratio = LikelihoodRatio::between(sigma, floor, size.max(floor));
+    let pairs: Vec<(f64, f64)> = seen.iter().map(|&e| ratio.log_likelihoods(e)).collect();
     let mut share: f64 = 0.5;
     let mut total = f64::NEG_INFINITY;
     for _ in 0..MAX_ROUNDS {

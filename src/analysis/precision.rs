@@ -23,7 +23,7 @@
 //! of freedom, from that variation.
 
 use super::project::Faces;
-use crate::tolerance::NOISE_MAX_SHARE;
+use crate::tolerance::noise_ceiling;
 use crate::variation::Uncertainty;
 
 /// What a fitted variation's uncertainty makes of its faces.
@@ -38,7 +38,7 @@ pub struct Precision {
 impl Precision {
     /// The weights of `faces` under the uncertainty `u`, for a model of size `size`.
     pub fn of(faces: &Faces, u: &Uncertainty, size: f64) -> Precision {
-        let ceiling = NOISE_MAX_SHARE * size;
+        let ceiling = noise_ceiling(size);
         let n = faces.entries();
         let mut worst = vec![[0.0f64; 3]; n];
         let mut part_of = vec![0usize; n];

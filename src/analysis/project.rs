@@ -465,15 +465,19 @@ impl Block {
     }
 
     /// `row`'s terms inside this block, as `(position in the block, coefficient)` in the
-    /// row's order, and its dot with every correction: what [`Block::k_form_of`] and
-    /// [`dot_of`] read, so a Gram matrix looks each slot up once per row, not once
-    /// per pair of rows.
-    fn row_in_block(&self, row: &Affine) -> RowInBlock {
-        let terms: Vec<(usize, f64)> = row
-            .terms
+    /// row's order: what [`dot_of`] reads, so a Gram matrix looks each slot up once per
+    /// row, not once per pair of rows.
+    fn terms_in_block(&self, row: &Affine) -> Vec<(usize, f64)> {
+        row.terms
             .iter()
             .filter_map(|&(s, a)| Some((*self.index.get(&s)?, a)))
-            .collect();
+            .collect()
+    }
+
+    /// A row taken into the block with its dot with every correction, what
+    /// [`Block::k_form_of`] reads.
+    fn row_in_block(&self, row: &Affine) -> RowInBlock {
+        let terms = self.terms_in_block(row);
         let corrections = self
             .corrections
             .iter()
@@ -671,8 +675,8 @@ impl Projector {
                 .dense
                 .get()
                 .filter(|_| !columns && block.gram.is_some());
-            let inside: Vec<RowInBlock> = rows.iter().map(|r| block.row_in_block(r)).collect();
             if let Some(dense) = dense {
+                let inside: Vec<RowInBlock> = rows.iter().map(|r| block.row_in_block(r)).collect();
                 for (i, a) in inside.iter().enumerate() {
                     for (j, b) in inside.iter().enumerate() {
                         m[(i, j)] += block.k_form_of(dense, a, b);
@@ -682,9 +686,11 @@ impl Projector {
             }
             // Per touched block: the columns K nᵢᵀ over its slots.
             let cols: Vec<Vec<f64>> = rows.iter().map(|r| block.k_column(r)).collect();
+            let inside: Vec<Vec<(usize, f64)>> =
+                rows.iter().map(|r| block.terms_in_block(r)).collect();
             for (i, r) in inside.iter().enumerate() {
                 for (j, col) in cols.iter().enumerate() {
-                    m[(i, j)] += dot_of(&r.terms, col);
+                    m[(i, j)] += dot_of(r, col);
                 }
             }
             if columns {

@@ -224,7 +224,7 @@ pub fn reparameterize_telling(
     let unshown: Vec<Vec<usize>> = samples.iter().map(Sample::unshown).collect();
     let contacts = match &choice.noise {
         Some(noise) => {
-            let ceiling = crate::tolerance::NOISE_MAX_SHARE * model.size();
+            let ceiling = crate::tolerance::noise_ceiling(model.size());
             let mut gaps = NoiseGaps::new(&faces, &samples, noise, ceiling);
             common_contacts(model, &raw, &unshown, &mut gaps)
         }
