@@ -128,3 +128,65 @@ fn dense_columns_are_the_solved_ones() {
         }
     }
 }
+
+/// A Gram matrix made by forward substitutions alone (a block without a dense `K`) is the
+/// one whole columns give, corrections included, and the block counts its rows as served:
+/// once that makes the dense `K`, the forward path steps aside.
+#[test]
+fn forward_gram_is_the_columns_gram() {
+    let m = crate::front::test_model(
+        "for (i = [0:3]) translate([i * 12, 0, 0]) cube([10, 10 + i, 5]);\n\
+         translate([0, 0, 5]) cube([46, 14, 2]);\n",
+    );
+    let faces = Faces::of(&m);
+    let mut basis = RowBasis::default();
+    basis.add(&Affine {
+        constant: 0.0,
+        terms: vec![(0, 1.0), (1, -1.0)],
+    });
+    let slots: Vec<SlotId> = (0..m.slots.len() as SlotId).collect();
+    let metric = faces.metric(&m.slot_values(), &[]);
+    let rows: Vec<Affine> = slots
+        .windows(3)
+        .map(|w| Affine {
+            constant: 0.0,
+            terms: vec![(w[0], 1.0), (w[2], -0.5)],
+        })
+        .collect();
+    let mut block = Block::build(&faces, &metric, &basis, slots.clone());
+    for r in &rows[..2] {
+        block.absorb(r);
+    }
+    assert_eq!(block.corrections.len(), 2);
+    let picked: Vec<&Affine> = rows[2..6].iter().collect();
+    let want: Vec<Vec<f64>> = picked
+        .iter()
+        .map(|a| {
+            let col = block.k_column(a);
+            picked.iter().map(|b| block.dot(b, &col)).collect()
+        })
+        .collect();
+    let mut got = DMatrix::zeros(picked.len(), picked.len());
+    assert!(block.forward_gram(&picked, &mut got), "no dense K yet");
+    let scale = want.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
+    assert!(scale > 0.0);
+    for (i, row) in want.iter().enumerate() {
+        for (j, w) in row.iter().enumerate() {
+            assert!(
+                (got[(i, j)] - w).abs() <= 1e-9 * scale,
+                "{} vs {w}",
+                got[(i, j)]
+            );
+        }
+    }
+    while block.dense.get().is_none() {
+        if !block.forward_gram(&picked, &mut got) {
+            break;
+        }
+    }
+    assert!(
+        block.dense.get().is_some(),
+        "made once it has served enough"
+    );
+    assert!(!block.forward_gram(&picked, &mut got));
+}
