@@ -2,7 +2,7 @@
 //! everything a fit fixes at its start (the bordered cameras and targets, the coarse levels,
 //! the size guards, the step scales) and runs the schedule as methods: the proportions
 //! search, each stage's rounds of optimiser steps (twice with a damped rerun), the
-//! finishing passes. Once per fit, where a stage lost a part ([`super::revive`]), the rest
+//! finishing passes from the best point stood on so far. Once per fit, where a stage lost a part ([`super::revive`]), the rest
 //! of the schedule runs from the stage's end and from that point with the part put back,
 //! and the fit goes on from the one its judge prefers.
 //!
@@ -289,7 +289,11 @@ impl<'a> Fitter<'a> {
             x = self.proportions(backend, x, &look);
             self.offer(backend, &mut best, &x, &mut look);
         }
-        let (x, curve) = self.run_stages(backend, &mut tally, x, &mut look, &mut best);
+        let (_, curve) = self.run_stages(backend, &mut tally, x, &mut look, &mut best);
+        // The finishing passes refine the best point stood on, not the last stage's end:
+        // a stage can leave a point its judge prefers (a fresh optimiser's first steps
+        // move every number by about the rate, even at a minimum).
+        let x = best.x.clone();
         self.refit_shades(backend, &x, &mut look);
         self.finish(backend, x, &mut look, &mut best);
         let end_loss = self.judge(backend, &best.x, &mut look).per_view;

@@ -9,7 +9,7 @@
 //! geometrically from `sigma.0` to `sigma.1` pixels, so early rounds see far and later
 //! rounds see sharp. With Adam, each stage also runs damped from the same start and the
 //! run with the lower loss goes on ([`FitOptions::damped_rerun`]). Optional finishing
-//! passes move single faces ([`polish`]) and then single numbers and faces by a pixel or
+//! passes, from the best point stood on so far (by the judge's loss), move single faces ([`polish`]) and then single numbers and faces by a pixel or
 //! less on hard edges or area coverage ([`polish::refine`]); pictures may be seen inside a
 //! border of background ([`frame`]). With [`FitOptions::coverage`] the last round, the
 //! refining moves and the judge compare exact area coverage per pixel; pictures are read
