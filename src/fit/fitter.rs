@@ -289,7 +289,7 @@ impl<'a> Fitter<'a> {
             x = self.proportions(backend, x, &look);
             self.offer(backend, &mut best, &x, &mut look);
         }
-        let (_, curve) = self.run_stages(backend, &mut tally, x, &mut look, &mut best);
+        let curve = self.run_stages(backend, &mut tally, x, &mut look, &mut best);
         // The finishing passes refine the best point stood on, not the last stage's end:
         // a stage can leave a point its judge prefers (a fresh optimiser's first steps
         // move every number by about the rate, even at a minimum).
@@ -537,8 +537,8 @@ impl<'a> Fitter<'a> {
     }
 
     /// Every stage from `x`, each from where the previous one ended; with a damped rerun,
-    /// the run with the lower final loss goes on. Each stage's end is offered to `best`.
-    /// The end point and the kept runs' steps.
+    /// the run with the lower final loss goes on. Each stage's end is offered to `best`,
+    /// which is where the fit goes on from. The kept runs' steps.
     fn run_stages(
         &self,
         backend: &mut dyn Backend,
@@ -546,8 +546,8 @@ impl<'a> Fitter<'a> {
         x: Vec<f64>,
         look: &mut Look,
         best: &mut Best,
-    ) -> (Vec<f64>, Vec<Step>) {
-        self.run_from(backend, tally, 0, x, look, best)
+    ) -> Vec<Step> {
+        self.run_from(backend, tally, 0, x, look, best).1
     }
 
     /// The stages from the `first` on, from `x`. The run from the first stage branches

@@ -226,22 +226,12 @@ impl Block {
                 (forward(l, w.as_mut_slice()), w)
             })
             .collect();
-        let d: Vec<Vec<f64>> = rows
-            .iter()
-            .map(|r| {
-                self.corrections
-                    .iter()
-                    .map(|(u, _)| self.dot(r, u))
-                    .collect()
-            })
-            .collect();
+        let inside: Vec<RowInBlock> = rows.iter().map(|r| self.row_in_block(r)).collect();
         for i in 0..rows.len() {
             for j in i..rows.len() {
                 let from = z[i].0.max(z[j].0);
-                let mut v = z[i].1.rows_range(from..).dot(&z[j].1.rows_range(from..));
-                for ((a, b), (_, s)) in d[i].iter().zip(&d[j]).zip(&self.corrections) {
-                    v -= a * b / s;
-                }
+                let v = z[i].1.rows_range(from..).dot(&z[j].1.rows_range(from..));
+                let v = self.less_corrections(v, &inside[i], &inside[j]);
                 m[(i, j)] += v;
                 if j != i {
                     m[(j, i)] += v;
@@ -301,6 +291,12 @@ impl Block {
                 v += x * y * k[(i, j)];
             }
         }
+        self.less_corrections(v, a, b)
+    }
+
+    /// `v` (a share of `a K₀ bᵀ` before the corrections) less the corrections not folded
+    /// into `K`: `Σ (a·u)(b·u) / s`, in their order.
+    fn less_corrections(&self, mut v: f64, a: &RowInBlock, b: &RowInBlock) -> f64 {
         for ((da, db), (_, s)) in a
             .corrections
             .iter()

@@ -46,24 +46,29 @@ fn a_typed_number_weighs_its_leverage_not_the_faces_it_drives() {
     assert!(free < 1e-6, "{free}");
 }
 
-/// A block serves the same columns `K nᵀ` whether it solves for each or reads them from
-/// the dense `K` it makes once it has served as many as it has slots.
-#[test]
-fn dense_columns_are_the_solved_ones() {
+/// Four boards under a top, all one block: its faces, metric, a basis of one chosen row
+/// inside the block (so its null space is not the identity) and every slot.
+fn boards_under_a_top() -> (Faces, Metric, RowBasis, Vec<SlotId>) {
     let m = crate::front::test_model(
         "for (i = [0:3]) translate([i * 12, 0, 0]) cube([10, 10 + i, 5]);\n\
          translate([0, 0, 5]) cube([46, 14, 2]);\n",
     );
     let faces = Faces::of(&m);
     let mut basis = RowBasis::default();
-    // One chosen row inside the block, so its null space is not the identity.
-    let (a, b) = (0 as SlotId, 1 as SlotId);
     basis.add(&Affine {
         constant: 0.0,
-        terms: vec![(a, 1.0), (b, -1.0)],
+        terms: vec![(0, 1.0), (1, -1.0)],
     });
     let slots: Vec<SlotId> = (0..m.slots.len() as SlotId).collect();
     let metric = faces.metric(&m.slot_values(), &[]);
+    (faces, metric, basis, slots)
+}
+
+/// A block serves the same columns `K nᵀ` whether it solves for each or reads them from
+/// the dense `K` it makes once it has served as many as it has slots.
+#[test]
+fn dense_columns_are_the_solved_ones() {
+    let (faces, metric, basis, slots) = boards_under_a_top();
     let block = Block::build(&faces, &metric, &basis, slots.clone());
     let rows: Vec<Affine> = slots
         .windows(2)
@@ -134,18 +139,7 @@ fn dense_columns_are_the_solved_ones() {
 /// once that makes the dense `K`, the forward path steps aside.
 #[test]
 fn forward_gram_is_the_columns_gram() {
-    let m = crate::front::test_model(
-        "for (i = [0:3]) translate([i * 12, 0, 0]) cube([10, 10 + i, 5]);\n\
-         translate([0, 0, 5]) cube([46, 14, 2]);\n",
-    );
-    let faces = Faces::of(&m);
-    let mut basis = RowBasis::default();
-    basis.add(&Affine {
-        constant: 0.0,
-        terms: vec![(0, 1.0), (1, -1.0)],
-    });
-    let slots: Vec<SlotId> = (0..m.slots.len() as SlotId).collect();
-    let metric = faces.metric(&m.slot_values(), &[]);
+    let (faces, metric, basis, slots) = boards_under_a_top();
     let rows: Vec<Affine> = slots
         .windows(3)
         .map(|w| Affine {
