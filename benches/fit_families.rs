@@ -11,6 +11,7 @@
 //! (default 256), `FIT_FAMILIES_SOURCES=ours,openscad`, `FIT_FAMILIES_SCHEDULE=paper` (the
 //! paper's schedule instead of the default; `far` is the default's recipe by name),
 //! `FIT_FAMILIES_REACH` (the schedule's [`Settings::reach`] instead),
+//! `FIT_FAMILIES_SOFT_EDGES=sigmoid|blurred` (its [`Settings::soft_edges`] instead),
 //! `FIT_FAMILIES_FIXED_VIEWS=1` (the five default views of `reparamc render` instead of
 //! random ones), `FIT_FAMILIES_KEEP=dir` (keep each fit's model, variant, views and result
 //! in `dir/<seed>-<source>/` instead of deleting them). Under `cargo test` (`--bench`
@@ -20,6 +21,7 @@ use reparamc::command::fit::{Options as FitOpts, Settings, prepare};
 use reparamc::command::render::BackendChoice;
 use reparamc::families::rng::Rng;
 use reparamc::families::{Family, style::Style};
+use reparamc::fit::SoftEdges;
 use reparamc::front::source::SourceMap;
 use reparamc::render::camera::{
     Camera, CameraSpec, Projection, cameras_json, default_views, framing,
@@ -124,6 +126,15 @@ fn base_settings() -> Settings {
     }
 }
 
+/// `FIT_FAMILIES_SOFT_EDGES=sigmoid|blurred` instead of the schedule's `default`.
+fn soft_edges(default: SoftEdges) -> SoftEdges {
+    match std::env::var("FIT_FAMILIES_SOFT_EDGES").as_deref() {
+        Ok("sigmoid") => SoftEdges::Sigmoid,
+        Ok("blurred") => SoftEdges::Blurred,
+        _ => default,
+    }
+}
+
 /// Fits the family's model to the variant's pictures with the default settings: IoU and
 /// seconds.
 fn fit_one(seed: u64, size: u32, source: &str) -> Option<(f64, f64)> {
@@ -153,6 +164,7 @@ fn fit_one(seed: u64, size: u32, source: &str) -> Option<(f64, f64)> {
         backend: CPU,
         settings: Settings {
             reach: env_or("FIT_FAMILIES_REACH", base_settings.reach),
+            soft_edges: soft_edges(base_settings.soft_edges),
             ..base_settings
         },
     };

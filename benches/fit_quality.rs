@@ -8,7 +8,8 @@
 //! For experiments, the table's settings can be overridden: `FIT_SHADING`, `FIT_LAMBDA`,
 //! `FIT_POLISH`, `FIT_REFINE`, `FIT_BORDER`, `FIT_SETTLE`, `FIT_REACH`, `FIT_ROUNDS`, `FIT_LEVELS`,
 //! `FIT_SIGMA_END`, `FIT_DAMPED` (Adam's floor in the rerun, 0: none), and `FIT_ALBEDO`,
-//! `FIT_PROPORTIONS`, `FIT_RELATIVE`, `FIT_COVERAGE` (0 or 1); `WARM` and `SCALE` set the rounds of the
+//! `FIT_PROPORTIONS`, `FIT_RELATIVE`, `FIT_COVERAGE`, `FIT_BLURRED` (0 or 1; 0: the soft
+//! rounds on sigmoid edges); `WARM` and `SCALE` set the rounds of the
 //! structural and stretch stages; `FRAME_UNION` frames the cameras on the base and the
 //! variant together instead of on the variant alone (with `FIT_BORDER=0`: the table before
 //! 2026-12-01, with `FIT_REFINE=0` as well). `SLOTS` (or `SLOTS=d`: the slots more
@@ -22,7 +23,7 @@
 #[path = "../tests/fit_support/quality.rs"]
 mod quality;
 
-use reparamc::fit::FitOptions;
+use reparamc::fit::{FitOptions, SoftEdges};
 use std::fmt::Write;
 
 /// The table's settings with overrides from the environment, for experiments.
@@ -73,6 +74,13 @@ fn options_from_env() -> FitOptions {
     }
     if let Some(v) = get("FIT_COVERAGE") {
         o.coverage = v != 0.0;
+    }
+    if let Some(v) = get("FIT_BLURRED") {
+        o.soft_edges = if v != 0.0 {
+            SoftEdges::Blurred
+        } else {
+            SoftEdges::Sigmoid
+        };
     }
     o
 }

@@ -7,7 +7,7 @@
 use super::EXIT_IO_ERROR;
 use super::render::{BackendArgs, failed, input_error, say};
 use reparamc::command::fit::{
-    Fitted, OptimizerChoice, Options, Progress, Settings, prepare, sidecar_path,
+    Fitted, OptimizerChoice, Options, Progress, Settings, SoftEdges, prepare, sidecar_path,
 };
 use reparamc::front::source::SourceMap;
 use reparamc::output::write_atomic;
@@ -37,7 +37,8 @@ pub struct Args {
     gallery: Option<PathBuf>,
     /// The schedule the other settings start from: `far`, the recipe that also reaches
     /// pictures far from the model (Adam at 0.01, settling, face moves and refining moves,
-    /// a border of 1/8), or `paper` (the paper's: SGD at 0.05). Flags below override it.
+    /// a border of 1/8, soft rounds on blurred area coverage), or `paper` (the paper's: SGD
+    /// at 0.05, sigmoid edges). Flags below override it.
     #[arg(long, value_enum, default_value_t = ScheduleArg::Far)]
     schedule: ScheduleArg,
     /// Compare sigmoid edges to the end instead of finishing on area coverage (the last
@@ -75,6 +76,12 @@ pub struct Args {
     /// Edge softness in pixels, first and last round: `START,END`.
     #[arg(long, default_value = "2,0.25")]
     sigma: String,
+    /// How the rounds soften edges: `sigmoid` silhouettes (the paper's; a part a few pixels
+    /// thin is least thicker than it is), or `blurred`: exact area coverage with the render
+    /// and the pictures blurred alike (least at the truth for parts of any width)
+    /// [paper: sigmoid, far: blurred].
+    #[arg(long, value_enum)]
+    soft_edges: Option<SoftEdgesArg>,
     /// The `0.2` of `sharpen(I) = I − 0.2·blur(I)`.
     #[arg(long, default_value_t = 0.2)]
     sharpen: f64,
@@ -138,6 +145,21 @@ enum ScheduleArg {
 }
 
 #[derive(Clone, Copy, clap::ValueEnum)]
+enum SoftEdgesArg {
+    Sigmoid,
+    Blurred,
+}
+
+impl From<SoftEdgesArg> for SoftEdges {
+    fn from(e: SoftEdgesArg) -> SoftEdges {
+        match e {
+            SoftEdgesArg::Sigmoid => SoftEdges::Sigmoid,
+            SoftEdgesArg::Blurred => SoftEdges::Blurred,
+        }
+    }
+}
+
+#[derive(Clone, Copy, clap::ValueEnum)]
 enum OptimizerArg {
     Sgd,
     Adam,
@@ -196,6 +218,7 @@ fn settings(args: &Args, sigma: (f64, f64)) -> Settings {
         momentum: args.momentum,
         single_run: args.single_run,
         sigma,
+        soft_edges: args.soft_edges.map_or(base.soft_edges, Into::into),
         sharpen: args.sharpen,
         blur: args.blur,
         shading: args.shading,

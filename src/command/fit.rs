@@ -13,6 +13,7 @@
 
 use super::render::{BackendChoice, choose_backend, draw};
 use super::{Failure, Message, as_messages};
+pub use crate::fit::SoftEdges;
 use crate::fit::loss::{LossSpec, Target};
 use crate::fit::optimize::Optimizer;
 use crate::fit::targets::{TargetSet, load_target_dir};
@@ -29,7 +30,6 @@ use crate::tolerance::RELATIVE_ROUNDOFF;
 use crate::variation::Uncertainty;
 /// Where a fitted model's uncertainty goes: `fitted.scad` → `fitted.json`.
 pub use crate::variation::uncertainty::sidecar_path;
-use rayon::prelude::*;
 use std::path::PathBuf;
 
 pub use crate::fit::{Progress, Step};
@@ -64,6 +64,8 @@ pub struct Settings {
     pub single_run: bool,
     /// Edge softness in pixels, first and last round.
     pub sigma: (f64, f64),
+    /// How rounds soften edges: sigmoid silhouettes or blurred area coverage.
+    pub soft_edges: SoftEdges,
     /// The `0.2` of `sharpen(I) = I − 0.2·blur(I)`; not negative.
     pub sharpen: f64,
     /// Standard deviation of that blur, pixels; not negative.
@@ -104,7 +106,8 @@ impl Default for Settings {
 impl Settings {
     /// The default: the recipe for pictures far from the model (and near ones; started at
     /// the truth it stays there): Adam at 0.01, settling, two sweeps of face moves and of
-    /// refining moves, a border of an eighth of the picture.
+    /// refining moves, a border of an eighth of the picture, soft rounds on blurred area
+    /// coverage (least at the truth for parts of any width).
     pub fn far() -> Settings {
         Settings {
             lr: 0.01,
@@ -113,6 +116,7 @@ impl Settings {
             polish: 2,
             refine: 2,
             border: 0.125,
+            soft_edges: SoftEdges::Blurred,
             ..Settings::paper()
         }
     }
@@ -132,6 +136,7 @@ impl Settings {
             momentum: 0.0,
             single_run: false,
             sigma: fit.sigma,
+            soft_edges: fit.soft_edges,
             sharpen: loss.sharpen,
             blur: loss.blur,
             shading: loss.shading,
@@ -162,6 +167,7 @@ impl Settings {
                 OptimizerChoice::Adam => Optimizer::adam(),
             },
             sigma: self.sigma,
+            soft_edges: self.soft_edges,
             loss: LossSpec {
                 sharpen: self.sharpen,
                 blur: self.blur,
@@ -344,7 +350,7 @@ fn load_targets(
         }
         set = set.downsized(m);
     }
-    let targets: Vec<Target> = set.images.par_iter().map(Target::from_rgb).collect();
+    let targets = Target::set_from_rgb(&set.images);
     for (t, f) in targets.iter().zip(&set.files) {
         if t.foreground() == 0 {
             messages.push(Message::Line(format!(

@@ -357,7 +357,7 @@ impl<'a> Explorer<'a> {
         // model's own numbers (`anchor`), as the paper's λ‖x − x₀‖² does.
         let mut problem = self.problem.clone();
         problem.x0 = x.to_vec();
-        let targets: Vec<Target> = guides.par_iter().map(Target::from_rgb).collect();
+        let targets = Target::set_from_rgb(guides);
         let last = round + 1 >= self.settings.rounds.max(1);
         // Each round is a one-round fit, so its one round is the last and compares area
         // coverage (`FitOptions::coverage`), as a fit ends. A schedule of soft edges over

@@ -19,7 +19,10 @@
 //! a mix of a darker face and the background. Such a picture shows itself by its
 //! silhouette: few of its pixels read as a mix of the background and the colour further
 //! in, where any antialiasing mixes half of them or more. It reads whole wherever it is
-//! foreground. (Inside an antialiased picture the same ambiguity stays: a
+//! foreground. The views of one fit come from one renderer and are told together, by the
+//! silhouettes of all of them ([`Rim`]): alone, a view of pale facets can look mixed (a
+//! soup mug's five OpenSCAD views: one read as antialiased, its pale facets as partly
+//! background, and the loss at the truth was higher than at a fit 0.1 IoU off it). (Inside an antialiased picture the same ambiguity stays: a
 //! lighter facet one or two pixels wide reads as partly background, and only its place,
 //! not its colour, could tell it from a gap narrower than a pixel.)
 //!
@@ -44,8 +47,8 @@ const PALETTE_STEP: f32 = 1.0 / 64.0;
 /// those where the edge falls on a sample boundary; OpenSCAD's pictures pooled from 4×
 /// their size: 62–96% mixed); a hard picture only by coincidence, where a face one pixel
 /// wide has the colour of a mix (OpenSCAD's views of the quality table's models: 0–28%,
-/// 48 of 50 views under a quarter; of generated families, under 1%). A view above it is
-/// unmixed, as before.
+/// 48 of 50 views under a quarter; of generated families, under 1%). Pictures above it,
+/// told together ([`Rim`]), are unmixed.
 const MIXED_RIM_SHARE: f64 = 0.25;
 
 /// Shares of a pixel between which a silhouette pixel explained as a mix of the
@@ -57,10 +60,48 @@ const MIXED_SHARE: (f32, f32) = (0.1, 0.9);
 /// `lo` and `hi` are the colour distances from `background` below which a pixel is
 /// background and above which it is surely foreground (a noisy picture raises them).
 pub fn unmix(img: &Rgb, background: [f32; 3], lo: f32, hi: f32) -> (Vec<f32>, Vec<f32>, bool) {
+    let hard = Rim::of(img, background, lo, hi).hard_edges();
+    let (m, s) = read(img, background, lo, hi, hard);
+    (m, s, hard)
+}
+
+/// How many of a picture's silhouette pixels read as mixed, of how many: the evidence of
+/// antialiasing. Pictures from one renderer are told together by their sums
+/// ([`Rim::hard_edges`]): a view of pale faces can look mixed on its own where its
+/// renderer's other views show hard edges plainly.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Rim {
+    pub mixed: usize,
+    pub pixels: usize,
+}
+
+impl Rim {
+    /// The silhouette of one picture.
+    pub fn of(img: &Rgb, background: [f32; 3], lo: f32, hi: f32) -> Rim {
+        Pixels::new(img, background, lo, hi).rim()
+    }
+
+    /// Two pictures' silhouettes together.
+    pub fn and(self, other: Rim) -> Rim {
+        Rim {
+            mixed: self.mixed + other.mixed,
+            pixels: self.pixels + other.pixels,
+        }
+    }
+
+    /// Whether pictures with this silhouette were drawn with hard edges: few of its pixels
+    /// mixed ([`MIXED_RIM_SHARE`]).
+    pub fn hard_edges(&self) -> bool {
+        (self.mixed as f64) < MIXED_RIM_SHARE * self.pixels as f64
+    }
+}
+
+/// A picture's channels as coverage, `(m, s)`: read whole wherever it is foreground when it
+/// was drawn with `hard` edges, else unmixed.
+pub fn read(img: &Rgb, background: [f32; 3], lo: f32, hi: f32, hard: bool) -> (Vec<f32>, Vec<f32>) {
     let px = Pixels::new(img, background, lo, hi);
-    if px.hard_edges() {
-        let (m, s) = whole(img, &px.d, background, lo, hi);
-        return (m, s, true);
+    if hard {
+        return whole(img, &px.d, background, lo, hi);
     }
     let solid: Vec<bool> = (0..px.d.len())
         .map(|i| px.neighbours(i).all(|j| j.is_some_and(|j| px.fg(j))))
@@ -90,7 +131,7 @@ pub fn unmix(img: &Rgb, background: [f32; 3], lo: f32, hi: f32) -> (Vec<f32>, Ve
                 s[x] = (luminance(&c) - (1.0 - m[x]) * lb).max(0.0);
             }
         });
-    (m, s, false)
+    (m, s)
 }
 
 /// The channels of a picture with hard edges: every pixel is background or covered whole
@@ -173,12 +214,12 @@ impl<'a> Pixels<'a> {
         colour_distance(&self.img.data[i], &self.img.data[j]) <= self.lo
     }
 
-    /// Whether the picture was drawn with hard edges. Its silhouette's pixels (foreground
-    /// beside background) are pure, of the colour of a pixel next to them further in;
-    /// mixed, explained as that colour and the background at a share within
-    /// [`MIXED_SHARE`]; or neither (a face one pixel wide of another shade). A hard picture
-    /// has few mixed ones ([`MIXED_RIM_SHARE`]).
-    fn hard_edges(&self) -> bool {
+    /// The picture's silhouette pixels (foreground beside background), and how many of
+    /// them are mixed. Each is pure, of the colour of a pixel next to it further in; mixed,
+    /// explained as that colour and the background at a share within [`MIXED_SHARE`]; or
+    /// neither (a face one pixel wide of another shade). A hard picture has few mixed ones
+    /// ([`Rim::hard_edges`]).
+    fn rim(&self) -> Rim {
         let bg = |j: Option<usize>| j.is_none_or(|j| self.d[j] < self.lo);
         let rim = |i: usize| {
             self.fg(i)
@@ -186,9 +227,9 @@ impl<'a> Pixels<'a> {
                     .iter()
                     .any(|&(dx, dy)| bg(self.offset(i, dx, dy)))
         };
-        let (mut mixed, mut n) = (0usize, 0usize);
+        let mut out = Rim::default();
         for i in (0..self.d.len()).filter(|&i| rim(i)) {
-            n += 1;
+            out.pixels += 1;
             let inner: Vec<usize> = self
                 .neighbours(i)
                 .flatten()
@@ -196,10 +237,10 @@ impl<'a> Pixels<'a> {
                 .collect();
             let pure = inner.iter().any(|&j| self.same(i, j));
             if !pure && inner.iter().any(|&j| self.mix_of(i, j)) {
-                mixed += 1;
+                out.mixed += 1;
             }
         }
-        (mixed as f64) < MIXED_RIM_SHARE * n as f64
+        out
     }
 
     /// Whether pixel `i` is a mix of the background and pixel `j`'s colour at a share

@@ -19,12 +19,13 @@ use super::memo::Memo;
 use super::optimize::{self, OptState, Optimizer, Space};
 use super::options::{
     FitOptions, GUARD_SWEEPS, HARD_SIGMA, PROPORTIONS_POOLING, RELATIVE_FLOOR, STEP_HALVINGS,
+    SoftEdges,
 };
 use super::uncertainty::{AtPoint, Information};
 use super::{Parametric, Stage, albedo, frame, polish, proportions, revive, stages};
 use crate::ir::Affine;
 use crate::render::camera::Camera;
-use crate::render::scene::{BOX_FILTER, DEFAULT_SHADE, NSHADE};
+use crate::render::scene::{BOX_FILTER, DEFAULT_SHADE, NSHADE, is_box};
 use crate::render::soft::{ViewPrep, prepare_view};
 use crate::render::{Backend, ImageValues};
 use crate::tolerance::GUARD_MARGIN;
@@ -429,8 +430,8 @@ impl<'a> Fitter<'a> {
         )
     }
 
-    /// The image loss at coarse level `level`: pooled levels render at full size and
-    /// compare pooled residuals; otherwise small images against pooled targets.
+    /// The image loss at coarse level `level` and edge softness `sigma`, rendered as
+    /// `sigma` says ([`Fitter::compare`]).
     fn image_loss(
         &self,
         backend: &mut dyn Backend,
@@ -440,21 +441,39 @@ impl<'a> Fitter<'a> {
         look: &Look,
         grad: bool,
     ) -> ImageValues {
+        self.loss_at(backend, x, look, &self.compare(level, sigma), grad)
+    }
+
+    /// What a loss at coarse level `level` and softness `sigma` compares: pooled levels
+    /// render at full size and compare pooled residuals; otherwise small images against
+    /// pooled targets.
+    fn compare(&self, level: usize, sigma: f64) -> Compare {
         let (render_level, pool) = if self.opts.pooled {
             (0, level as u32)
         } else {
             (level, 0)
         };
-        let spec = LossSpec {
-            level: self.opts.loss.level + pool,
-            ..self.opts.loss
-        };
-        let at = Compare {
+        Compare {
             level: render_level,
             sigma,
-            spec,
-        };
-        self.loss_at(backend, x, look, &at, grad)
+            spec: LossSpec {
+                level: self.opts.loss.level + pool,
+                ..self.opts.loss
+            },
+        }
+    }
+
+    /// What a round of softness `sigma` compares ([`FitOptions::soft_edges`]): sigmoid
+    /// edges, or exact area coverage with both pictures blurred as wide as that sigmoid.
+    /// The rounds, the face moves after them and the proportions search soften so.
+    fn round_compare(&self, level: usize, sigma: f64) -> Compare {
+        let mut at = self.compare(level, sigma);
+        if self.opts.soft_edges == SoftEdges::Blurred && !is_box(sigma) {
+            let pooled = at.spec.level - self.opts.loss.level;
+            at.sigma = BOX_FILTER;
+            at.spec.smooth = SoftEdges::blur_of(sigma) / f64::from(1u32 << pooled);
+        }
+        at
     }
 
     /// Refits each view's shading and each item's albedo to the targets at `x` (at full
@@ -523,14 +542,9 @@ impl<'a> Fitter<'a> {
     /// The proportions search from `x`, compared coarsely (pooled twice, the first round's
     /// softness) so that far edges still count.
     fn proportions(&self, backend: &mut dyn Backend, x: Vec<f64>, look: &Look) -> Vec<f64> {
-        let at = Compare {
-            level: 0,
-            sigma: self.opts.sigma.0,
-            spec: LossSpec {
-                level: self.opts.loss.level + PROPORTIONS_POOLING,
-                ..self.opts.loss
-            },
-        };
+        let mut at = self.round_compare(0, self.opts.sigma.0);
+        at.spec.level += PROPORTIONS_POOLING;
+        at.spec.smooth /= f64::from(1u32 << PROPORTIONS_POOLING);
         let weights = stages::axis_weights(&self.problem.base, self.problem.x0.len());
         let mut coarse = |x: &[f64]| self.loss_at(backend, x, look, &at, false).total();
         proportions::search(x, &weights, &mut coarse, &|x| self.valid(x))
@@ -678,7 +692,7 @@ impl<'a> Fitter<'a> {
         look: &Look,
     ) -> (f64, f64) {
         let xs = descent.x();
-        let out = self.image_loss(backend, level, &xs, sigma, look, true);
+        let out = self.loss_at(backend, &xs, look, &self.round_compare(level, sigma), true);
         let (rv, rg) = self.reg(&xs);
         let mut gx = self.problem.chain(&out.dtheta);
         for (g, r) in gx.iter_mut().zip(&rg) {
@@ -732,10 +746,9 @@ impl<'a> Fitter<'a> {
         let problem = &*self.problem;
         let valid = |x: &[f64]| self.valid(x);
         if self.opts.polish > 0 {
-            let sigma = self.opts.sigma.1;
-            let mut eval = |x: &[f64]| {
-                self.image_loss(backend, 0, x, sigma, look, false).total() + self.reg(x).0
-            };
+            let at = self.round_compare(0, self.opts.sigma.1);
+            let mut eval =
+                |x: &[f64]| self.loss_at(backend, x, look, &at, false).total() + self.reg(x).0;
             x = polish(problem, x, self.opts.polish, &mut eval, &valid);
             self.offer(backend, best, &x, look);
         }

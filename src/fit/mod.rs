@@ -52,7 +52,7 @@ pub mod uncertainty;
 
 pub use check::{FitError, check};
 pub use fitter::{FitResult, Fitter, Progress, Step, fit, fit_measured};
-pub use options::{DAMPED_FLOOR, FitOptions, HARD_SIGMA};
+pub use options::{DAMPED_FLOOR, FitOptions, HARD_SIGMA, SoftEdges};
 pub use parametric::Parametric;
 pub use polish::polish;
 pub use stages::{

@@ -193,15 +193,19 @@ pub fn run_case(
         .ok()
         .and_then(|v| v.parse().ok())
         .unwrap_or(0);
-    let targets: Vec<Target> = cams
+    let pictures: Vec<_> = cams
         .iter()
         .map(|c| {
             let mut big = c.clone();
             big.width <<= ss;
             big.height <<= ss;
-            let img = openscad::render(&case.target, &big, &OpenScadRender::default())
-                .unwrap_or_else(|e| panic!("{e}"));
-            let mut t = Target::from_rgb(&img);
+            openscad::render(&case.target, &big, &OpenScadRender::default())
+                .unwrap_or_else(|e| panic!("{e}"))
+        })
+        .collect();
+    let targets: Vec<Target> = Target::set_from_rgb(&pictures)
+        .into_iter()
+        .map(|mut t| {
             for _ in 0..ss {
                 t = t.pooled();
             }

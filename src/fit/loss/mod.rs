@@ -8,18 +8,21 @@
 //! channel has weight [`LossSpec::shading`].
 //!
 //! `sharpen` is linear and symmetric (a Gaussian blur with zero padding), so the derivative
-//! of `‖sharpen(r)‖²` with respect to `r` is `2·sharpen(sharpen(r))`.
+//! of `‖sharpen(r)‖²` with respect to `r` is `2·sharpen(sharpen(r))`. With
+//! [`LossSpec::smooth`] both images are blurred before they are sharpened, and the
+//! derivative runs the two steps in the other order (the transpose).
 //!
 //! The loss is the fit's, not the renderer's: [`ImageLoss`] is the
 //! [`ImageFunction`] the renderer evaluates and differentiates, and [`image_loss`] asks a
 //! backend for it.
 
-use super::coverage::colour_distance;
+use super::coverage::{Rim, colour_distance};
 use crate::render::image::Rgb;
 use crate::render::scene::{NSHADE, Scene};
 use crate::render::soft::{SoftImage, ViewPrep};
 use crate::render::{Backend, ImageFunction, ImageValue, ImageValues};
 use crate::tolerance::COVERAGE_FLOOR;
+use rayon::prelude::*;
 
 /// How images are compared.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -33,6 +36,11 @@ pub struct LossSpec {
     /// Compare after this many 2×2 average poolings (0: at full resolution). Coarse levels
     /// see parts that are far from where they should be.
     pub level: u32,
+    /// Standard deviation, in pixels of the compared images, of a Gaussian blur of both
+    /// images before they are sharpened; 0: none. A blur of the difference of two exact
+    /// coverages is least where they are equal, at any width: the soft rounds of a fit
+    /// with [`super::SoftEdges::Blurred`] compare so.
+    pub smooth: f64,
 }
 
 impl Default for LossSpec {
@@ -42,6 +50,7 @@ impl Default for LossSpec {
             blur: 1.0,
             shading: 1.0,
             level: 0,
+            smooth: 0.0,
         }
     }
 }
@@ -78,9 +87,39 @@ impl Target {
     /// common colour along the border; a pixel's coverage is how much of it the object
     /// covers, unmixed from the background ([`super::coverage`]).
     pub fn from_rgb(img: &Rgb) -> Target {
-        let grey = img.luminance();
         let (background, lo, hi) = foreground_thresholds(img);
-        let (m, s, hard_edges) = super::coverage::unmix(img, background, lo, hi);
+        let hard = Rim::of(img, background, lo, hi).hard_edges();
+        Target::read(img, background, lo, hi, hard)
+    }
+
+    /// Channels of pictures from one renderer (a fit's views), each read as
+    /// [`Target::from_rgb`] reads one, but whether they were drawn with hard edges told
+    /// from all their silhouettes together: a renderer draws every view alike, and a view
+    /// of pale faces whose facets look like mixes on their own is read as its renderer
+    /// drew it.
+    pub fn set_from_rgb(imgs: &[Rgb]) -> Vec<Target> {
+        let found: Vec<([f32; 3], f32, f32, Rim)> = imgs
+            .par_iter()
+            .map(|img| {
+                let (background, lo, hi) = foreground_thresholds(img);
+                (background, lo, hi, Rim::of(img, background, lo, hi))
+            })
+            .collect();
+        let hard = found
+            .iter()
+            .fold(Rim::default(), |all, f| all.and(f.3))
+            .hard_edges();
+        imgs.par_iter()
+            .zip(&found)
+            .map(|(img, &(background, lo, hi, _))| Target::read(img, background, lo, hi, hard))
+            .collect()
+    }
+
+    /// The picture's channels with its background and thresholds found, read whole where
+    /// it was drawn with `hard` edges.
+    fn read(img: &Rgb, background: [f32; 3], lo: f32, hi: f32, hard: bool) -> Target {
+        let grey = img.luminance();
+        let (m, s) = super::coverage::read(img, background, lo, hi, hard);
         let grey = grey
             .iter()
             .zip(m.iter().zip(&s))
@@ -94,7 +133,7 @@ impl Target {
             grey,
             background,
             border: 0,
-            hard_edges,
+            hard_edges: hard,
         }
     }
 
@@ -383,12 +422,8 @@ struct Sharpened {
 
 fn sharpened(render: &SoftImage, target: &Target, spec: &LossSpec) -> Sharpened {
     let (w0, h0) = (render.width, render.height);
-    // Sharpening twice reaches twice the kernel's radius beyond the differences.
-    let reach = if spec.sharpen == 0.0 {
-        0
-    } else {
-        2 * (gaussian_kernel(spec.blur).len() / 2)
-    };
+    // Comparing twice (the gradient) reaches twice the kernels' radii beyond the differences.
+    let reach = 2 * operator_radius(spec);
     let n_at = |w: u32, h: u32| (w * h) as f64 * target.picture_share();
     if spec.level == 0 {
         // At full size the differences are taken on their rectangle alone.
@@ -397,8 +432,8 @@ fn sharpened(render: &SoftImage, target: &Target, spec: &LossSpec) -> Sharpened 
         let rect = support_where(w, h, reach, differs);
         let (qm, qs) = match rect {
             Some(r) => (
-                sharpen_rect(&crop_difference(&render.m, &target.m, w, r), r, spec),
-                sharpen_rect(&crop_difference(&render.s, &target.s, w, r), r, spec),
+                compare_rect(&crop_difference(&render.m, &target.m, w, r), r, spec),
+                compare_rect(&crop_difference(&render.s, &target.s, w, r), r, spec),
             ),
             None => (Vec::new(), Vec::new()),
         };
@@ -430,8 +465,8 @@ fn sharpened(render: &SoftImage, target: &Target, spec: &LossSpec) -> Sharpened 
     let rect = support_where(wu, hu, reach, |i| rm[i] != 0.0 || rs[i] != 0.0);
     let (qm, qs) = match rect {
         Some(r) => (
-            sharpen_rect(&crop(&rm, wu, r), r, spec),
-            sharpen_rect(&crop(&rs, wu, r), r, spec),
+            compare_rect(&crop(&rm, wu, r), r, spec),
+            compare_rect(&crop(&rs, wu, r), r, spec),
         ),
         None => (Vec::new(), Vec::new()),
     };
@@ -510,9 +545,42 @@ fn uncrop(values: &[f32], w: u32, h: u32, rect: Option<[usize; 4]>) -> Vec<f32> 
     out
 }
 
-/// [`sharpen`] of an image that is zero outside `rect`, given and returned on `rect`.
-fn sharpen_rect(values: &[f32], [x0, y0, x1, y1]: [usize; 4], spec: &LossSpec) -> Vec<f32> {
-    sharpen(values, (x1 - x0) as u32, (y1 - y0) as u32, spec)
+/// How far the compare operator ([`compare_rect`]) reaches from a non-zero pixel.
+fn operator_radius(spec: &LossSpec) -> usize {
+    let radius = |sigma: f64| gaussian_kernel(sigma).len() / 2;
+    let sharpening = if spec.sharpen == 0.0 {
+        0
+    } else {
+        radius(spec.blur)
+    };
+    sharpening + radius(spec.smooth)
+}
+
+/// Both images' operator on their difference: [`smooth`] then [`sharpen`], of an image
+/// that is zero outside `rect`, given and returned on `rect`.
+fn compare_rect(values: &[f32], [x0, y0, x1, y1]: [usize; 4], spec: &LossSpec) -> Vec<f32> {
+    let (w, h) = (x1 - x0, y1 - y0);
+    sharpen(&smooth(values, w, h, spec), w as u32, h as u32, spec)
+}
+
+/// The transpose of [`compare_rect`] (each of its two steps is symmetric): [`sharpen`]
+/// then [`smooth`].
+fn compare_rect_transposed(
+    values: &[f32],
+    [x0, y0, x1, y1]: [usize; 4],
+    spec: &LossSpec,
+) -> Vec<f32> {
+    let (w, h) = (x1 - x0, y1 - y0);
+    smooth(&sharpen(values, w as u32, h as u32, spec), w, h, spec)
+}
+
+/// `img` blurred by a Gaussian of `spec.smooth` pixels (zero padding); `img` itself when
+/// that is 0.
+pub fn smooth(img: &[f32], w: usize, h: usize, spec: &LossSpec) -> Vec<f32> {
+    if spec.smooth <= 0.0 {
+        return img.to_vec();
+    }
+    blur(img, w, h, &gaussian_kernel(spec.smooth))
 }
 
 /// One view's residuals: the elements whose squares sum to [`view_loss`] (the sharpened
@@ -556,7 +624,7 @@ pub fn view_loss(render: &SoftImage, target: &Target, spec: &LossSpec, grad: boo
     let ks = (2.0 * spec.shading / n) as f32;
     let scaled = |q: &[f32], k: f32| -> Vec<f32> {
         let g: Vec<f32> = match rect {
-            Some(r) => sharpen_rect(q, r, spec)
+            Some(r) => compare_rect_transposed(q, r, spec)
                 .into_iter()
                 .map(|v| v * k)
                 .collect(),
@@ -612,131 +680,4 @@ pub fn image_loss(
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn a_border_is_background_around_the_same_picture() {
-        let (w, h) = (3u32, 2u32);
-        let m: Vec<f32> = vec![1.0, 0.5, 0.0, 0.25, 1.0, 1.0];
-        let t = Target {
-            width: w,
-            height: h,
-            s: m.iter().map(|v| v * 0.5).collect(),
-            grey: vec![0.5; 6],
-            m,
-            background: [1.0; 3],
-            border: 0,
-            hard_edges: false,
-        };
-        let b = t.with_border(2);
-        assert_eq!((b.width, b.height), (7, 6));
-        assert_eq!(b.picture_share(), 6.0 / 42.0);
-        assert_eq!(b.pooled().border, 1);
-        for y in 0..6 {
-            for x in 0..7 {
-                let k = y * 7 + x;
-                let inside = (2..5).contains(&x) && (2..4).contains(&y);
-                let want = if inside {
-                    t.m[(y - 2) * 3 + x - 2]
-                } else {
-                    0.0
-                };
-                assert_eq!(b.m[k], want, "({x}, {y})");
-                assert_eq!(b.s[k], want * 0.5, "({x}, {y})");
-            }
-        }
-    }
-
-    #[test]
-    fn sharpening_only_near_the_object_equals_sharpening_everywhere() {
-        let (w, h) = (23usize, 17usize);
-        let mut img = vec![0.0f32; w * h];
-        for (i, v) in img.iter_mut().enumerate() {
-            let (x, y) = (i % w, i / w);
-            if (6..11).contains(&x) && (1..9).contains(&y) {
-                *v = ((i * 37) % 11) as f32 / 11.0 - 0.4;
-            }
-        }
-        let spec = LossSpec::default();
-        let kernel = gaussian_kernel(spec.blur);
-        let whole = blur(&img, w, h, &kernel);
-        let want: Vec<f32> = img.iter().zip(&whole).map(|(v, b)| v - 0.2 * b).collect();
-        assert_eq!(sharpen(&img, w as u32, h as u32, &spec), want);
-        // Twice, as the gradient does: the first sharpening's support has grown.
-        let again = sharpen(&want, w as u32, h as u32, &spec);
-        let whole2 = blur(&want, w, h, &kernel);
-        let want2: Vec<f32> = want.iter().zip(&whole2).map(|(v, b)| v - 0.2 * b).collect();
-        assert_eq!(again, want2);
-        assert_eq!(sharpen(&[0.0; 12], 4, 3, &spec), vec![0.0; 12]);
-    }
-
-    #[test]
-    fn blur_is_the_zero_padded_convolution() {
-        let kernel = gaussian_kernel(1.0);
-        let r = (kernel.len() / 2) as isize;
-        // Narrower and wider than the kernel.
-        for (w, h) in [(3usize, 2usize), (11, 9)] {
-            let img: Vec<f32> = (0..w * h).map(|i| ((i * 37) % 11) as f32 / 11.0).collect();
-            let at = |x: isize, y: isize| {
-                let inside = (0..w as isize).contains(&x) && (0..h as isize).contains(&y);
-                if inside {
-                    img[y as usize * w + x as usize]
-                } else {
-                    0.0
-                }
-            };
-            let got = blur(&img, w, h, &kernel);
-            for y in 0..h as isize {
-                for x in 0..w as isize {
-                    let mut want = 0.0f32;
-                    for (j, &kj) in kernel.iter().enumerate() {
-                        for (i, &ki) in kernel.iter().enumerate() {
-                            want += kj * ki * at(x + i as isize - r, y + j as isize - r);
-                        }
-                    }
-                    let g = got[y as usize * w + x as usize];
-                    assert!((g - want).abs() < 1e-5, "({x}, {y}): {g} vs {want}");
-                }
-            }
-        }
-    }
-
-    #[test]
-    fn sharpen_is_symmetric() {
-        let (w, h) = (7u32, 5u32);
-        let spec = LossSpec::default();
-        let a: Vec<f32> = (0..35).map(|i| ((i * 37) % 11) as f32 / 11.0).collect();
-        let b: Vec<f32> = (0..35).map(|i| ((i * 13) % 7) as f32 / 7.0).collect();
-        let sa = sharpen(&a, w, h, &spec);
-        let sb = sharpen(&b, w, h, &spec);
-        let l: f32 = sa.iter().zip(&b).map(|(x, y)| x * y).sum();
-        let r: f32 = a.iter().zip(&sb).map(|(x, y)| x * y).sum();
-        assert!((l - r).abs() < 1e-4);
-    }
-
-    #[test]
-    fn unpool_is_the_transpose_of_pool() {
-        let (w, h) = (5u32, 3u32);
-        let a: Vec<f32> = (0..15).map(|i| ((i * 37) % 11) as f32).collect();
-        let b: Vec<f32> = (0..6).map(|i| ((i * 13) % 7) as f32).collect();
-        let pa = pool(&a, w, h).0;
-        let ub = unpool(&b, w, h);
-        let l: f32 = pa.iter().zip(&b).map(|(x, y)| x * y).sum();
-        let r: f32 = a.iter().zip(&ub).map(|(x, y)| x * y).sum();
-        assert!((l - r).abs() < 1e-3);
-    }
-
-    #[test]
-    fn background_is_the_border_colour() {
-        let mut img = Rgb::new(10, 10, [1.0, 1.0, 0.9]);
-        for y in 3..7 {
-            for x in 3..7 {
-                img.data[y * 10 + x] = [0.9, 0.8, 0.2];
-            }
-        }
-        let t = Target::from_rgb(&img);
-        assert_eq!(t.foreground(), 16);
-        assert!((t.background[2] - 0.9).abs() < 1e-6);
-    }
-}
+mod tests;
