@@ -55,16 +55,6 @@ const MIXED_RIM_SHARE: f64 = 0.25;
 /// background and the surface further in counts as mixed, when telling a hard picture.
 const MIXED_SHARE: (f32, f32) = (0.1, 0.9);
 
-/// A picture's channels as coverage: `(m, s, hard)`, foreground coverage, premultiplied
-/// grey, and whether the picture was drawn with hard edges (point-sampled: read whole).
-/// `lo` and `hi` are the colour distances from `background` below which a pixel is
-/// background and above which it is surely foreground (a noisy picture raises them).
-pub fn unmix(img: &Rgb, background: [f32; 3], lo: f32, hi: f32) -> (Vec<f32>, Vec<f32>, bool) {
-    let hard = Rim::of(img, background, lo, hi).hard_edges();
-    let (m, s) = read(img, background, lo, hi, hard);
-    (m, s, hard)
-}
-
 /// How many of a picture's silhouette pixels read as mixed, of how many: the evidence of
 /// antialiasing. Pictures from one renderer are told together by their sums
 /// ([`Rim::hard_edges`]): a view of pale faces can look mixed on its own where its
@@ -159,7 +149,7 @@ fn luminance(c: &[f32; 3]) -> f32 {
 }
 
 /// A picture's pixels with their distances from the background, for the neighbourhood
-/// tests of [`unmix`]. Pixels are indices `y · width + x`.
+/// tests of [`read`] and [`Rim`]. Pixels are indices `y · width + x`.
 struct Pixels<'a> {
     img: &'a Rgb,
     background: [f32; 3],
@@ -363,6 +353,13 @@ fn smoothstep(a: f32, b: f32, x: f32) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// One picture's channels as coverage, `(m, s, hard)`, told hard-edged on its own.
+    fn unmix(img: &Rgb, background: [f32; 3], lo: f32, hi: f32) -> (Vec<f32>, Vec<f32>, bool) {
+        let hard = Rim::of(img, background, lo, hi).hard_edges();
+        let (m, s) = read(img, background, lo, hi, hard);
+        (m, s, hard)
+    }
 
     /// The length of `[a, b)` inside pixel `p`'s span `[p, p + 1)`.
     fn overlap(p: u32, a: f32, b: f32) -> f32 {
