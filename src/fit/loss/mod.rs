@@ -85,11 +85,10 @@ const FG_HI: f32 = 0.03;
 impl Target {
     /// Channels of a picture on a plain background: the background colour is the most
     /// common colour along the border; a pixel's coverage is how much of it the object
-    /// covers, unmixed from the background ([`super::coverage`]).
+    /// covers, unmixed from the background ([`super::coverage`]); told hard-edged or
+    /// antialiased by its own silhouette alone.
     pub fn from_rgb(img: &Rgb) -> Target {
-        let (background, lo, hi) = foreground_thresholds(img);
-        let hard = Rim::of(img, background, lo, hi).hard_edges();
-        Target::read(img, background, lo, hi, hard)
+        Target::set_from_rgb(std::slice::from_ref(img)).remove(0)
     }
 
     /// Channels of pictures from one renderer (a fit's views), each read as
@@ -576,7 +575,7 @@ fn compare_rect_transposed(
 
 /// `img` blurred by a Gaussian of `spec.smooth` pixels (zero padding); `img` itself when
 /// that is 0.
-pub fn smooth(img: &[f32], w: usize, h: usize, spec: &LossSpec) -> Vec<f32> {
+fn smooth(img: &[f32], w: usize, h: usize, spec: &LossSpec) -> Vec<f32> {
     if spec.smooth <= 0.0 {
         return img.to_vec();
     }
