@@ -3,7 +3,8 @@
 //! draw of its intent parameters, optional parts dropped as drawn) seen from five cameras,
 //! with the `fit` command's default settings. The five cameras are drawn at random around
 //! the variant (per seed), so no fixed set of views can be tuned to. Targets are drawn by
-//! our renderer (`reparamc render`) and, when `openscad` is installed, by OpenSCAD itself;
+//! our renderer (`reparamc render`) and, when `openscad` is installed, by OpenSCAD itself
+//! (its CGAL render, whose booleans are what the program means);
 //! each fit is scored by exact 3-D IoU of the fitted model against the variant.
 //!
 //! Prints, per target source, the share of fits with IoU ≥ 0.9 and ≥ 0.95, the median, and
@@ -12,6 +13,7 @@
 //! paper's schedule instead of the default; `far` is the default's recipe by name),
 //! `FIT_FAMILIES_REACH` (the schedule's [`Settings::reach`] instead),
 //! `FIT_FAMILIES_SOFT_EDGES=sigmoid|blurred` (its [`Settings::soft_edges`] instead),
+//! `FIT_FAMILIES_PREVIEW=1` (OpenSCAD's targets drawn by its preview instead of CGAL),
 //! `FIT_FAMILIES_FIXED_VIEWS=1` (the five default views of `reparamc render` instead of
 //! random ones), `FIT_FAMILIES_KEEP=dir` (keep each fit's model, variant, views and result
 //! in `dir/<seed>-<source>/` instead of deleting them). Under `cargo test` (`--bench`
@@ -99,7 +101,13 @@ fn targets(variant: &Path, views: &Path, size: u32, source: &str, seed: u64) -> 
         let name = format!("{}.png", c.name);
         specs.push(CameraSpec::of(c, Some(name.clone())));
         let img = if source == "openscad" {
-            match openscad::render(variant, c, &OpenScadRender::default()) {
+            // CGAL's render: OpenSCAD's booleans, as its `.csg` means them. The preview
+            // draws a cut flush with a face (the generator's hollows) as a z-fighting film.
+            let how = OpenScadRender {
+                full_render: std::env::var_os("FIT_FAMILIES_PREVIEW").is_none(),
+                ..OpenScadRender::default()
+            };
+            match openscad::render(variant, c, &how) {
                 Ok(img) => img,
                 Err(e) => {
                     eprintln!("openscad: {e}");

@@ -111,8 +111,16 @@ impl Params {
     }
 }
 
+/// Drawn values are multiples of this (1/16 of a unit), as typed numbers are short. Every
+/// form the generator writes has coefficients 2, 1, ½ or ¼ of them, so a relation that holds
+/// in the family holds exactly in the written numbers (six decimals are enough) and in
+/// OpenSCAD's arithmetic: a cut flush with a face stays flush, where a difference of one
+/// in the sixth decimal is a lid sealing the hollow or a film over it in its pictures.
+pub const VALUE_GRID: f64 = 1.0 / 16.0;
+
 /// A draw of θ from the intent subspace: every parameter moved by ±10–40% (`scale` shrinks
-/// the moves), keeping every form of `positive` above `floor`; `None` when 60 draws fail.
+/// the moves) to a multiple of [`VALUE_GRID`], keeping every form of `positive` above
+/// `floor`; `None` when 60 draws fail.
 pub fn draw(
     params: &Params,
     positive: &[Lin],
@@ -124,7 +132,10 @@ pub fn draw(
         let theta: Vec<f64> = params
             .list
             .iter()
-            .map(|p| p.base * (1.0 + scale * rng.sign() * rng.range(0.1, 0.4)))
+            .map(|p| {
+                let v = p.base * (1.0 + scale * rng.sign() * rng.range(0.1, 0.4));
+                (v / VALUE_GRID).round() * VALUE_GRID
+            })
             .collect();
         if positive.iter().all(|f| f.eval(&theta) > floor) {
             return Some(theta);

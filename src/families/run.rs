@@ -17,7 +17,6 @@ use crate::front::source::SourceMap;
 use crate::front::with_large_stack;
 use crate::ir::Model;
 use crate::ir::feature::world_intervals;
-use crate::tolerance::Tolerance;
 use crate::variation::{Variation, load_variation};
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -196,9 +195,10 @@ impl Case {
     }
 
     /// Where the loaded model's parts leave the generator's at slot values `x` (intent
-    /// values `theta`, parts `dropped` left out): the first differing face, if any.
+    /// values `theta`, parts `dropped` left out): the first face that differs at all, if
+    /// any. Written numbers are exact ([`super::intent::VALUE_GRID`]), so a face the
+    /// family puts flush with another is flush in the text too.
     pub fn differs(&self, x: &[f64], theta: &[f64], dropped: &[usize]) -> Option<String> {
-        let eps = Tolerance::for_size(self.family.size).epsilon;
         let base = self.family.params.base();
         for (i, (p, q)) in self.model.parts.iter().zip(&self.family.parts).enumerate() {
             if dropped.contains(&i) {
@@ -209,7 +209,7 @@ impl Case {
             for a in 0..3 {
                 let got = [&iv[a].0, &iv[a].1].map(|n| n.affine().map_or(n.value, |f| f.eval(x)));
                 let exp = [want[a].0.eval(theta), want[a].1.eval(theta)];
-                if (got[0] - exp[0]).abs() > eps || (got[1] - exp[1]).abs() > eps {
+                if got != exp {
                     return Some(format!("{} axis {a}: {got:?} ≠ {exp:?}", q.name));
                 }
             }
