@@ -100,8 +100,9 @@ pub struct Args {
     /// instead of in units of the model's size.
     #[arg(long)]
     relative_steps: bool,
-    /// After the rounds, sweeps of single-face moves kept when the loss drops (reaches
-    /// faces hidden behind other parts) [paper: 0, far: 2].
+    /// After the rounds, sweeps of single-face moves and of moves of the faces that share a
+    /// plane in the model (a board thinned with the boards it holds), kept when the loss
+    /// drops (reaches faces hidden behind other parts) [paper: 0, far: 2].
     #[arg(long)]
     polish: Option<usize>,
     /// After the face moves, sweeps of single-number and single-face moves of a pixel or

@@ -76,7 +76,7 @@ pub struct Settings {
     pub levels: u32,
     /// Step each number in proportion to its own size.
     pub relative_steps: bool,
-    /// Sweeps of single-face moves after the rounds.
+    /// Sweeps of single-face and shared-plane moves after the rounds.
     pub polish: usize,
     /// Sweeps of moves of a pixel or less on hard edges after the face moves.
     pub refine: usize,

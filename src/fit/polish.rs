@@ -1,9 +1,11 @@
-//! Moves after the gradient rounds, kept when the loss drops: single faces of single parts
-//! moved by fractions of the part's extent ([`polish`]), and single slots and faces moved
-//! by a pixel or less on hard edges ([`refine`]).
+//! Moves after the gradient rounds, kept when the loss drops: single faces of single parts,
+//! and the faces of several parts that share a plane in the model as written (a contact, a
+//! flush), moved by fractions of the parts' extent ([`polish`]); and single slots and faces
+//! moved by a pixel or less on hard edges ([`refine`]).
 //!
-//! Invariant: a face move changes only the chosen face among its part's faces (the smallest
-//! change of slots that does so), and the result is never worse than the start.
+//! Invariants: a face move changes only the chosen face among its part's faces, and a
+//! plane move only the plane's faces among its parts' faces (the smallest change of slots
+//! that does so, round-off removed); the result is never worse than the start.
 
 use super::Parametric;
 use crate::analysis::linalg;
@@ -19,8 +21,9 @@ const FACE_MOVES: [f64; 10] = [-0.95, -0.5, -0.25, -0.1, -0.03, 0.03, 0.1, 0.25,
 /// of the part's extent outwards and 3% to 95% inwards; keep the best move when the loss
 /// drops. Gradients only see edges that are visible; this reaches faces hidden behind other
 /// parts (a shelf grown up into a table top), sizes the loss barely sees, and parts the
-/// target does not have (a chair's arms squashed flat for a stool). `sweeps` passes, or
-/// until nothing improves.
+/// target does not have (a chair's arms squashed flat for a stool). Each pass then moves
+/// every plane group together ([`plane_groups`]): a board thinned with the boards it holds.
+/// `sweeps` passes, or until nothing improves.
 pub fn polish(
     problem: &Parametric,
     mut x: Vec<f64>,
@@ -32,12 +35,151 @@ pub fn polish(
     let shifts = |extent: f64, out: f64| -> Vec<f64> {
         FACE_MOVES.iter().map(|frac| out * frac * extent).collect()
     };
+    let groups = plane_groups(problem);
     for _ in 0..sweeps {
-        if !sweep_faces(problem, &mut x, &mut best, &shifts, loss, ok) {
+        let faces = sweep_faces(problem, &mut x, &mut best, &shifts, loss, ok);
+        let planes = sweep_planes(problem, &groups, &mut x, &mut best, loss, ok);
+        if !faces && !planes {
             break;
         }
     }
     x
+}
+
+/// Moves of a plane's faces together tried by [`polish`], as fractions of the thinnest of
+/// their parts along the plane's normal, both ways.
+const PLANE_MOVES: [f64; 5] = [0.03, 0.1, 0.25, 0.5, 0.95];
+
+/// Faces of two or more parts that lie on one plane in the model as written (at
+/// `Parametric::anchor`): a contact (a side's inner face on the bottom's end) or a flush
+/// (two tops at one height). Each group is `(part, face)` pairs, all along one axis.
+pub fn plane_groups(problem: &Parametric) -> Vec<Vec<(usize, usize)>> {
+    let eps = RELATIVE_EPSILON * problem.scale;
+    let mut groups = Vec::new();
+    for axis in 0..3u8 {
+        let mut at: Vec<(f64, usize, usize)> = Vec::new();
+        for (p, faces) in problem.faces.iter().enumerate() {
+            for (j, (a, _, form)) in faces.iter().enumerate() {
+                if *a == axis && !form.is_constant() {
+                    at.push((form.eval(&problem.anchor), p, j));
+                }
+            }
+        }
+        at.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let mut start = 0;
+        for k in 1..=at.len() {
+            if k < at.len() && at[k].0 - at[k - 1].0 <= eps {
+                continue;
+            }
+            let group: Vec<(usize, usize)> = at[start..k].iter().map(|g| (g.1, g.2)).collect();
+            let parts = group
+                .iter()
+                .map(|g| g.0)
+                .collect::<std::collections::BTreeSet<_>>();
+            if parts.len() >= 2 {
+                groups.push(group);
+            }
+            start = k;
+        }
+    }
+    groups
+}
+
+/// One pass over the plane groups: every face of a group is moved by the same shift (the
+/// smallest change of slots that does so and keeps every other face of their parts), by
+/// [`PLANE_MOVES`] of the thinnest of their parts along the plane's normal either way; the
+/// best is kept when the loss drops below `best`. A single face move opens a gap where two
+/// parts touched (a side thinned away from the bottom it held) and the loss refuses it;
+/// moved together they stay in contact. Whether any move was kept.
+fn sweep_planes(
+    problem: &Parametric,
+    groups: &[Vec<(usize, usize)>],
+    x: &mut Vec<f64>,
+    best: &mut f64,
+    loss: &mut dyn FnMut(&[f64]) -> f64,
+    ok: &dyn Fn(&[f64]) -> bool,
+) -> bool {
+    let d = x.len();
+    let mut improved = false;
+    for group in groups {
+        let axis = problem.faces[group[0].0][group[0].1].0;
+        let mut parts: Vec<usize> = group.iter().map(|g| g.0).collect();
+        parts.sort_unstable();
+        parts.dedup();
+        let rows: Vec<(usize, usize, &Affine)> = parts
+            .iter()
+            .flat_map(|&p| {
+                problem.faces[p]
+                    .iter()
+                    .enumerate()
+                    .map(move |(j, f)| (p, j, &f.2))
+            })
+            .collect();
+        let forms: Vec<&Affine> = rows.iter().map(|r| r.2).collect();
+        let a = linalg::matrix(&forms, d);
+        let pinv = linalg::pinv(&a);
+        let thinnest = parts
+            .iter()
+            .map(|&p| extent_along(problem, p, axis, x))
+            .fold(f64::INFINITY, f64::min);
+        if !(thinnest.is_finite() && thinnest > 0.0) {
+            continue;
+        }
+        let wanted = |shift: f64| -> nalgebra::DVector<f64> {
+            nalgebra::DVector::from_iterator(
+                rows.len(),
+                rows.iter().map(|r| {
+                    if group.contains(&(r.0, r.1)) {
+                        shift
+                    } else {
+                        0.0
+                    }
+                }),
+            )
+        };
+        let moves: Vec<Vec<f64>> = PLANE_MOVES
+            .iter()
+            .flat_map(|f| [f * thinnest, -f * thinnest])
+            .filter_map(|shift| {
+                let b = wanted(shift);
+                let dx = without_round_off(&pinv * &b, shift);
+                // Every face of the parts must move as asked (no slot moves a member
+                // without another face of its part, or a shared slot ties them otherwise).
+                let off = (&a * &dx - &b).amax();
+                (off <= RELATIVE_EPSILON * thinnest.max(problem.scale))
+                    .then(|| x.iter().zip(dx.iter()).map(|(a, b)| a + b).collect())
+            })
+            .collect();
+        if let Some((l, cand)) = super::best_improvement(moves, *best, loss, ok) {
+            *best = l;
+            *x = cand;
+            improved = true;
+        }
+    }
+    improved
+}
+
+/// `dx` with the entries round-off left in the pseudo-inverse's solution (under
+/// [`RELATIVE_EPSILON`] of the move `shift`) set to zero: otherwise a move would also nudge
+/// numbers it does not mean to move, and a loss those nudges lower by round-off alone
+/// would take it (and walk hidden faces anywhere, one tie at a time).
+fn without_round_off(mut dx: nalgebra::DVector<f64>, shift: f64) -> nalgebra::DVector<f64> {
+    let tol = RELATIVE_EPSILON * shift.abs();
+    dx.iter_mut()
+        .filter(|v| v.abs() <= tol)
+        .for_each(|v| *v = 0.0);
+    dx
+}
+
+/// Part `p`'s extent along `axis` at `x` (its faces' spread).
+fn extent_along(problem: &Parametric, p: usize, axis: u8, x: &[f64]) -> f64 {
+    let along: Vec<f64> = problem.faces[p]
+        .iter()
+        .filter(|f| f.0 == axis)
+        .map(|f| f.2.eval(x))
+        .collect();
+    along.iter().fold(f64::NEG_INFINITY, |m, v| m.max(*v))
+        - along.iter().fold(f64::INFINITY, |m, v| m.min(*v))
 }
 
 /// One pass over every face of every part: the shifts `shifts(extent, outwards)` of that
@@ -53,7 +195,7 @@ fn sweep_faces(
 ) -> bool {
     let d = x.len();
     let mut improved = false;
-    for faces in &problem.faces {
+    for (p, faces) in problem.faces.iter().enumerate() {
         if faces.len() < 2 {
             continue;
         }
@@ -64,13 +206,7 @@ fn sweep_faces(
         }
         let pinv = linalg::pinv(&a);
         for (j, &(axis, high, ref form)) in faces.iter().enumerate() {
-            let along: Vec<f64> = faces
-                .iter()
-                .filter(|f| f.0 == axis)
-                .map(|f| f.2.eval(x))
-                .collect();
-            let extent = along.iter().fold(f64::NEG_INFINITY, |m, v| m.max(*v))
-                - along.iter().fold(f64::INFINITY, |m, v| m.min(*v));
+            let extent = extent_along(problem, p, axis, x);
             if extent.is_nan() || extent <= 0.0 || form.is_constant() {
                 continue;
             }
@@ -81,7 +217,7 @@ fn sweep_faces(
                 .filter_map(|shift| {
                     let mut b = nalgebra::DVector::zeros(faces.len());
                     b[j] = shift;
-                    let dx = &pinv * b;
+                    let dx = without_round_off(&pinv * b, shift);
                     let cand: Vec<f64> = x.iter().zip(dx.iter()).map(|(a, b)| a + b).collect();
                     // The move must actually move that face.
                     let moved = (form.eval(&cand) - form.eval(x) - shift).abs()
@@ -199,8 +335,48 @@ mod tests {
     }
 
     #[test]
+    fn a_board_is_thinned_together_with_the_board_it_holds() {
+        // A side 10 thick holding a bottom at its inner face; the "picture" wants the side
+        // 5 thick and sees any gap between the two.
+        let m = crate::front::test_model(
+            "cube([10, 50, 50]);\ntranslate([10, 0, 0]) cube([80, 50, 5]);\n",
+        );
+        let p = Parametric::new(&m);
+        let face = |x: &[f64], part: usize, high: bool| -> f64 {
+            let f = p.faces[part]
+                .iter()
+                .find(|f| f.0 == 0 && f.1 == high)
+                .unwrap();
+            f.2.eval(x)
+        };
+        let mut loss = |x: &[f64]| -> f64 {
+            let (inner, end) = (face(x, 0, true), face(x, 1, false));
+            (inner - 5.0).powi(2) + 100.0 * (end - inner).powi(2)
+        };
+        let along_x = plane_groups(&p)
+            .into_iter()
+            .filter(|g| p.faces[g[0].0][g[0].1].0 == 0)
+            .count();
+        assert_eq!(along_x, 1, "one contact along x");
+        let x = polish(&p, p.x0.clone(), 2, &mut loss, &|_| true);
+        assert!(
+            (face(&x, 0, true) - 5.0).abs() < 1e-9,
+            "side {}",
+            face(&x, 0, true)
+        );
+        assert!(
+            (face(&x, 1, false) - 5.0).abs() < 1e-9,
+            "bottom {}",
+            face(&x, 1, false)
+        );
+        // The bottom's far end and the side's outer face stay.
+        assert!((face(&x, 1, true) - 90.0).abs() < 1e-9);
+        assert!(face(&x, 0, false).abs() < 1e-9);
+    }
+
+    #[test]
     fn a_part_the_target_lacks_is_squashed_in_one_sweep() {
-        // The chair's left arm; the loss is its volume.
+        // The chair's left arm; the loss is its volume (and any other part's move).
         let m = chair();
         let p = Parametric::new(&m);
         let arm = m.parts.iter().position(|q| q.name == "left_arm").unwrap();
@@ -216,10 +392,22 @@ mod tests {
             })
         };
         let volume = |x: &[f64]| -> f64 { extents(x).iter().product() };
+        // As a picture would, the loss also sees every other part's faces move.
+        let others = |x: &[f64]| -> f64 {
+            (0..p.faces.len())
+                .filter(|&q| q != arm)
+                .flat_map(|q| p.faces[q].iter())
+                .map(|f| (f.2.eval(x) - f.2.eval(&p.x0)).powi(2))
+                .sum()
+        };
         let v0 = volume(&p.x0);
-        let x = polish(&p, p.x0.clone(), 1, &mut |x| volume(x), &|x| {
-            extents(x).iter().all(|&e| e > 0.0)
-        });
+        let x = polish(
+            &p,
+            p.x0.clone(),
+            1,
+            &mut |x| volume(x) + 1e6 * others(x),
+            &|x| extents(x).iter().all(|&e| e > 0.0),
+        );
         let v = volume(&x);
         assert!(v < 0.01 * v0, "arm volume {v0} -> {v}");
         // Nothing but the arm's numbers moved.
