@@ -125,23 +125,17 @@ fn sweep_planes(
         if !(thinnest.is_finite() && thinnest > 0.0) {
             continue;
         }
-        let wanted = |shift: f64| -> nalgebra::DVector<f64> {
-            nalgebra::DVector::from_iterator(
-                rows.len(),
-                rows.iter().map(|r| {
-                    if group.contains(&(r.0, r.1)) {
-                        shift
-                    } else {
-                        0.0
-                    }
-                }),
-            )
-        };
+        // 1 on the rows of the plane's faces, 0 on their parts' other faces.
+        let on_plane = nalgebra::DVector::from_iterator(
+            rows.len(),
+            rows.iter()
+                .map(|r| f64::from(u8::from(group.contains(&(r.0, r.1))))),
+        );
         let moves: Vec<Vec<f64>> = PLANE_MOVES
             .iter()
             .flat_map(|f| [f * thinnest, -f * thinnest])
             .filter_map(|shift| {
-                let b = wanted(shift);
+                let b = &on_plane * shift;
                 let dx = without_round_off(&pinv * &b, shift);
                 // Every face of the parts must move as asked (no slot moves a member
                 // without another face of its part, or a shared slot ties them otherwise).
