@@ -290,13 +290,7 @@ impl<'a> Fitter<'a> {
             x = self.proportions(backend, x, &look);
             self.offer(backend, &mut best, &x, &mut look);
         }
-        let curve = self.run_stages(backend, &mut tally, x, &mut look, &mut best);
-        // The finishing passes refine the best point stood on, not the last stage's end:
-        // a stage can leave a point its judge prefers (a fresh optimiser's first steps
-        // move every number by about the rate, even at a minimum).
-        let x = best.x.clone();
-        self.refit_shades(backend, &x, &mut look);
-        self.finish(backend, x, &mut look, &mut best);
+        let curve = self.run_from(backend, &mut tally, 0, x, &mut look, &mut best);
         let end_loss = self.judge(backend, &best.x, &mut look).per_view;
         FitResult {
             x0: problem.x0.clone(),
@@ -550,24 +544,15 @@ impl<'a> Fitter<'a> {
         proportions::search(x, &weights, &mut coarse, &|x| self.valid(x))
     }
 
-    /// Every stage from `x`, each from where the previous one ended; with a damped rerun,
-    /// the run with the lower final loss goes on. Each stage's end is offered to `best`,
-    /// which is where the fit goes on from. The kept runs' steps.
-    fn run_stages(
-        &self,
-        backend: &mut dyn Backend,
-        tally: &mut Tally,
-        x: Vec<f64>,
-        look: &mut Look,
-        best: &mut Best,
-    ) -> Vec<Step> {
-        self.run_from(backend, tally, 0, x, look, best).1
-    }
-
-    /// The stages from the `first` on, from `x`. The run from the first stage branches
-    /// where a stage lost a part ([`Fitter::revived`]): the rest of the schedule runs from
-    /// the stage's end and from the point with the part put back (neither branches again),
-    /// and the one the judge prefers goes on. Every stage's end is offered to `best`.
+    /// The stages from the `first` on, from `x`, then the finishing passes: each stage
+    /// from where the previous one ended; with a damped rerun, the run with the lower final
+    /// loss goes on. Every stage's end is offered to `best`. The run from the first stage
+    /// branches where a stage lost a part ([`Fitter::revived`]): the rest of the schedule,
+    /// finishing passes included, runs from the stage's end and from the point with the
+    /// part put back (neither branches again), each with its own `best`, and the branch
+    /// whose best is lower is what the fit returns. The finishing passes decide: a branch
+    /// behind at the stage's end can finish well ahead (a shelf thinned by the stage comes
+    /// back where a board had grown over it). The kept runs' steps.
     fn run_from(
         &self,
         backend: &mut dyn Backend,
@@ -576,7 +561,7 @@ impl<'a> Fitter<'a> {
         mut x: Vec<f64>,
         look: &mut Look,
         best: &mut Best,
-    ) -> (Vec<f64>, Vec<Step>) {
+    ) -> Vec<Step> {
         let mut curve = Vec::with_capacity(tally.total_steps);
         let mut round: usize = self.stages[..first].iter().map(|s| s.rounds).sum();
         for (i, stage) in self.stages.iter().enumerate().skip(first) {
@@ -611,21 +596,25 @@ impl<'a> Fitter<'a> {
                 // The branch's steps are more work than the fit announced: the total grows.
                 let rest: usize = self.stages[i + 1..].iter().map(|s| s.rounds).sum();
                 tally.total_steps += rest * self.opts.iterations * self.runs();
-                let mut look_b = look.clone();
-                let (xb, cb) = self.run_from(backend, tally, i + 1, alt, &mut look_b, best);
-                let (xa, ca) = self.run_from(backend, tally, i + 1, x, look, best);
-                let la = self.score(backend, &xa, look);
-                let lb = self.score(backend, &xb, &mut look_b);
-                if lb < la {
-                    *look = look_b;
+                let (mut look_b, mut best_b) = (look.clone(), best.clone());
+                let cb = self.run_from(backend, tally, i + 1, alt, &mut look_b, &mut best_b);
+                let ca = self.run_from(backend, tally, i + 1, x, look, best);
+                if best_b.loss < best.loss {
+                    (*look, *best) = (look_b, best_b);
                     curve.extend(cb);
-                    return (xb, curve);
+                } else {
+                    curve.extend(ca);
                 }
-                curve.extend(ca);
-                return (xa, curve);
+                return curve;
             }
         }
-        (x, curve)
+        // The finishing passes refine the best point stood on, not the last stage's end:
+        // a stage can leave a point its judge prefers (a fresh optimiser's first steps
+        // move every number by about the rate, even at a minimum).
+        let x = best.x.clone();
+        self.refit_shades(backend, &x, look);
+        self.finish(backend, x, look, best);
+        curve
     }
 
     /// `end` with every part lost since `start` ([`revive::lost_parts`]) put back as it
