@@ -14,6 +14,7 @@
 //! `FIT_FAMILIES_REACH` (the schedule's [`Settings::reach`] instead),
 //! `FIT_FAMILIES_SOFT_EDGES=sigmoid|blurred` (its [`Settings::soft_edges`] instead),
 //! `FIT_FAMILIES_PREVIEW=1` (OpenSCAD's targets drawn by its preview instead of CGAL),
+//! `FIT_FAMILIES_ONE_COLOUR=1` (one grey per surface instead of a brightness per part),
 //! `FIT_FAMILIES_FIXED_VIEWS=1` (the five default views of `reparamc render` instead of
 //! random ones), `FIT_FAMILIES_KEEP=dir` (keep each fit's model, variant, views and result
 //! in `dir/<seed>-<source>/` instead of deleting them). Under `cargo test` (`--bench`
@@ -173,6 +174,7 @@ fn fit_one(seed: u64, size: u32, source: &str) -> Option<(f64, f64)> {
         settings: Settings {
             reach: env_or("FIT_FAMILIES_REACH", base_settings.reach),
             soft_edges: soft_edges(base_settings.soft_edges),
+            per_item_albedo: std::env::var_os("FIT_FAMILIES_ONE_COLOUR").is_none(),
             ..base_settings
         },
     };
