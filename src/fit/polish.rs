@@ -11,6 +11,7 @@ use super::Parametric;
 use crate::analysis::linalg;
 use crate::ir::Affine;
 use crate::tolerance::RELATIVE_EPSILON;
+use nalgebra::{DMatrix, DVector};
 
 /// Moves of one face tried by [`polish`], as fractions of the part's extent along it
 /// (negative: inwards; −0.95 all but removes the part along that axis).
@@ -35,9 +36,10 @@ pub fn polish(
     let shifts = |extent: f64, out: f64| -> Vec<f64> {
         FACE_MOVES.iter().map(|frac| out * frac * extent).collect()
     };
-    let groups = plane_groups(problem);
+    let solves = part_solves(problem);
+    let groups = plane_moves(problem);
     for _ in 0..sweeps {
-        let faces = sweep_faces(problem, &mut x, &mut best, &shifts, loss, ok);
+        let faces = sweep_faces(problem, &solves, &mut x, &mut best, &shifts, loss, ok);
         let planes = sweep_planes(problem, &groups, &mut x, &mut best, loss, ok);
         if !faces && !planes {
             break;
@@ -85,6 +87,56 @@ pub fn plane_groups(problem: &Parametric) -> Vec<Vec<(usize, usize)>> {
     groups
 }
 
+/// A plane group ([`plane_groups`]) prepared for moving: its parts, the rows of all their
+/// faces over the slots with the pseudo-inverse, and a 0/1 mask of the plane's faces among
+/// those rows. It depends on the model, not on the point, so it is worked out once per pass.
+struct PlaneMove {
+    axis: u8,
+    parts: Vec<usize>,
+    a: DMatrix<f64>,
+    pinv: DMatrix<f64>,
+    on_plane: DVector<f64>,
+}
+
+/// Every plane group of `problem`, prepared ([`PlaneMove`]).
+fn plane_moves(problem: &Parametric) -> Vec<PlaneMove> {
+    let d = problem.x0.len();
+    plane_groups(problem)
+        .into_iter()
+        .map(|group| {
+            let axis = problem.faces[group[0].0][group[0].1].0;
+            let mut parts: Vec<usize> = group.iter().map(|g| g.0).collect();
+            parts.sort_unstable();
+            parts.dedup();
+            let rows: Vec<(usize, usize, &Affine)> = parts
+                .iter()
+                .flat_map(|&p| {
+                    problem.faces[p]
+                        .iter()
+                        .enumerate()
+                        .map(move |(j, f)| (p, j, &f.2))
+                })
+                .collect();
+            let forms: Vec<&Affine> = rows.iter().map(|r| r.2).collect();
+            let a = linalg::matrix(&forms, d);
+            let pinv = linalg::pinv(&a);
+            // 1 on the rows of the plane's faces, 0 on their parts' other faces.
+            let on_plane = DVector::from_iterator(
+                rows.len(),
+                rows.iter()
+                    .map(|r| f64::from(u8::from(group.contains(&(r.0, r.1))))),
+            );
+            PlaneMove {
+                axis,
+                parts,
+                a,
+                pinv,
+                on_plane,
+            }
+        })
+        .collect()
+}
+
 /// One pass over the plane groups: every face of a group is moved by the same shift (the
 /// smallest change of slots that does so and keeps every other face of their parts), by
 /// [`PLANE_MOVES`] of the thinnest of their parts along the plane's normal either way; the
@@ -93,53 +145,31 @@ pub fn plane_groups(problem: &Parametric) -> Vec<Vec<(usize, usize)>> {
 /// moved together they stay in contact. Whether any move was kept.
 fn sweep_planes(
     problem: &Parametric,
-    groups: &[Vec<(usize, usize)>],
+    planes: &[PlaneMove],
     x: &mut Vec<f64>,
     best: &mut f64,
     loss: &mut dyn FnMut(&[f64]) -> f64,
     ok: &dyn Fn(&[f64]) -> bool,
 ) -> bool {
-    let d = x.len();
     let mut improved = false;
-    for group in groups {
-        let axis = problem.faces[group[0].0][group[0].1].0;
-        let mut parts: Vec<usize> = group.iter().map(|g| g.0).collect();
-        parts.sort_unstable();
-        parts.dedup();
-        let rows: Vec<(usize, usize, &Affine)> = parts
+    for plane in planes {
+        let thinnest = plane
+            .parts
             .iter()
-            .flat_map(|&p| {
-                problem.faces[p]
-                    .iter()
-                    .enumerate()
-                    .map(move |(j, f)| (p, j, &f.2))
-            })
-            .collect();
-        let forms: Vec<&Affine> = rows.iter().map(|r| r.2).collect();
-        let a = linalg::matrix(&forms, d);
-        let pinv = linalg::pinv(&a);
-        let thinnest = parts
-            .iter()
-            .map(|&p| extent_along(problem, p, axis, x))
+            .map(|&p| extent_along(problem, p, plane.axis, x))
             .fold(f64::INFINITY, f64::min);
         if !(thinnest.is_finite() && thinnest > 0.0) {
             continue;
         }
-        // 1 on the rows of the plane's faces, 0 on their parts' other faces.
-        let on_plane = nalgebra::DVector::from_iterator(
-            rows.len(),
-            rows.iter()
-                .map(|r| f64::from(u8::from(group.contains(&(r.0, r.1))))),
-        );
         let moves: Vec<Vec<f64>> = PLANE_MOVES
             .iter()
             .flat_map(|f| [f * thinnest, -f * thinnest])
             .filter_map(|shift| {
-                let b = &on_plane * shift;
-                let dx = without_round_off(&pinv * &b, shift);
+                let b = &plane.on_plane * shift;
+                let dx = without_round_off(&plane.pinv * &b, shift);
                 // Every face of the parts must move as asked (no slot moves a member
                 // without another face of its part, or a shared slot ties them otherwise).
-                let off = (&a * &dx - &b).amax();
+                let off = (&plane.a * &dx - &b).amax();
                 (off <= RELATIVE_EPSILON * thinnest.max(problem.scale))
                     .then(|| x.iter().zip(dx.iter()).map(|(a, b)| a + b).collect())
             })
@@ -157,7 +187,7 @@ fn sweep_planes(
 /// [`RELATIVE_EPSILON`] of the move `shift`) set to zero: otherwise a move would also nudge
 /// numbers it does not mean to move, and a loss those nudges lower by round-off alone
 /// would take it (and walk hidden faces anywhere, one tie at a time).
-fn without_round_off(mut dx: nalgebra::DVector<f64>, shift: f64) -> nalgebra::DVector<f64> {
+fn without_round_off(mut dx: DVector<f64>, shift: f64) -> DVector<f64> {
     let tol = RELATIVE_EPSILON * shift.abs();
     dx.iter_mut()
         .filter(|v| v.abs() <= tol)
@@ -176,29 +206,40 @@ fn extent_along(problem: &Parametric, p: usize, axis: u8, x: &[f64]) -> f64 {
         - along.iter().fold(f64::INFINITY, |m, v| m.min(*v))
 }
 
+/// Per part, the pseudo-inverse of its faces' rows over the slots (`None` for a part with
+/// fewer than two faces or none that a slot moves): a face move's smallest change of
+/// slots. It depends on the model, not on the point, so it is worked out once per pass.
+fn part_solves(problem: &Parametric) -> Vec<Option<DMatrix<f64>>> {
+    let d = problem.x0.len();
+    problem
+        .faces
+        .iter()
+        .map(|faces| {
+            if faces.len() < 2 {
+                return None;
+            }
+            let rows: Vec<&Affine> = faces.iter().map(|f| &f.2).collect();
+            let a = linalg::matrix(&rows, d);
+            (!a.iter().all(|v| *v == 0.0)).then(|| linalg::pinv(&a))
+        })
+        .collect()
+}
+
 /// One pass over every face of every part: the shifts `shifts(extent, outwards)` of that
 /// face alone are tried and the best is kept when the loss drops below `best`. Whether any
-/// move was kept.
+/// move was kept. `solves` are the parts' [`part_solves`].
 fn sweep_faces(
     problem: &Parametric,
+    solves: &[Option<DMatrix<f64>>],
     x: &mut Vec<f64>,
     best: &mut f64,
     shifts: &dyn Fn(f64, f64) -> Vec<f64>,
     loss: &mut dyn FnMut(&[f64]) -> f64,
     ok: &dyn Fn(&[f64]) -> bool,
 ) -> bool {
-    let d = x.len();
     let mut improved = false;
-    for (p, faces) in problem.faces.iter().enumerate() {
-        if faces.len() < 2 {
-            continue;
-        }
-        let rows: Vec<&Affine> = faces.iter().map(|f| &f.2).collect();
-        let a = linalg::matrix(&rows, d);
-        if a.iter().all(|v| *v == 0.0) {
-            continue;
-        }
-        let pinv = linalg::pinv(&a);
+    for (p, (faces, pinv)) in problem.faces.iter().zip(solves).enumerate() {
+        let Some(pinv) = pinv else { continue };
         for (j, &(axis, high, ref form)) in faces.iter().enumerate() {
             let extent = extent_along(problem, p, axis, x);
             if extent.is_nan() || extent <= 0.0 || form.is_constant() {
@@ -209,9 +250,9 @@ fn sweep_faces(
             let moves: Vec<Vec<f64>> = shifts(extent, out)
                 .into_iter()
                 .filter_map(|shift| {
-                    let mut b = nalgebra::DVector::zeros(faces.len());
+                    let mut b = DVector::zeros(faces.len());
                     b[j] = shift;
-                    let dx = without_round_off(&pinv * b, shift);
+                    let dx = without_round_off(pinv * b, shift);
                     let cand: Vec<f64> = x.iter().zip(dx.iter()).map(|(a, b)| a + b).collect();
                     // The move must actually move that face.
                     let moved = (form.eval(&cand) - form.eval(x) - shift).abs()
@@ -254,6 +295,7 @@ pub fn refine(
         .collect();
     // Faces move by the same steps whatever their part's extent.
     let shifts = |_: f64, _: f64| steps.clone();
+    let solves = part_solves(problem);
     for _ in 0..sweeps {
         let mut improved = false;
         for i in 0..x.len() {
@@ -268,7 +310,7 @@ pub fn refine(
                 improved = true;
             }
         }
-        improved |= sweep_faces(problem, &mut x, &mut best, &shifts, loss, ok);
+        improved |= sweep_faces(problem, &solves, &mut x, &mut best, &shifts, loss, ok);
         if !improved {
             break;
         }
