@@ -6,13 +6,13 @@
 //! Environment: `FIT_QUALITY_SIZE` (pixels, default 256), `FIT_QUALITY_CASES` (comma-separated
 //! substrings of `model/variant` to run), `FIT_QUALITY_GPU=1` to fit with the wgpu backend.
 //! For experiments, the table's settings can be overridden: `FIT_SHADING`, `FIT_LAMBDA`,
-//! `FIT_POLISH`, `FIT_REFINE`, `FIT_BORDER`, `FIT_SETTLE`, `FIT_REACH`, `FIT_ROUNDS`, `FIT_LEVELS`,
-//! `FIT_SIGMA_END`, `FIT_DAMPED` (Adam's floor in the rerun, 0: none), and `FIT_ALBEDO`,
-//! `FIT_PROPORTIONS`, `FIT_RELATIVE`, `FIT_COVERAGE`, `FIT_BLURRED` (0 or 1; 0: the soft
-//! rounds on sigmoid edges); `WARM` and `SCALE` set the rounds of the
-//! structural and stretch stages; `FRAME_UNION` frames the cameras on the base and the
-//! variant together instead of on the variant alone (with `FIT_BORDER=0`: the table before
-//! 2026-12-01, with `FIT_REFINE=0` as well). `SLOTS` (or `SLOTS=d`: the slots more
+//! `FIT_SIZE_PRIOR`, `FIT_POLISH`, `FIT_REFINE`, `FIT_BORDER`, `FIT_SETTLE`, `FIT_REACH`,
+//! `FIT_ROUNDS`, `FIT_LEVELS`, `FIT_SIGMA_END`, `FIT_DAMPED` (Adam's floor in the rerun, 0:
+//! none), and `FIT_ALBEDO`, `FIT_PROPORTIONS`, `FIT_RELATIVE`, `FIT_COVERAGE`,
+//! `FIT_BLURRED` (0 or 1; 0: the soft rounds on sigmoid edges); `WARM` and `SCALE` set the
+//! rounds of the structural and stretch stages; `FRAME_UNION` frames the cameras on the
+//! base and the variant together instead of on the variant alone (with `FIT_BORDER=0`: the
+//! table before 2026-12-01, with `FIT_REFINE=0` as well). `SLOTS` (or `SLOTS=d`: the slots more
 //! than d from the truth), `TRUTH` (the loss there, soft and hard), `TRACE`, `BLAME` (the
 //! slots whose true value alone gains most IoU, and the IoU with the first k of them set),
 //! `MISMATCH` (pixels whose hard coverage disagrees with the target's mask; with `GALLERY`
@@ -35,6 +35,9 @@ fn options_from_env() -> FitOptions {
     }
     if let Some(v) = get("FIT_LAMBDA") {
         o.lambda = v;
+    }
+    if let Some(v) = get("FIT_SIZE_PRIOR") {
+        o.size_prior = v;
     }
     if let Some(v) = get("FIT_SETTLE") {
         o.settle = v;

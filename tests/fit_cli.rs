@@ -237,6 +237,11 @@ fn bad_target_folders() {
         &["--sigma", "2,-1"],
         &["--sigma", "two positive numbers"],
     );
+    fails_with(
+        &good,
+        &["--size-prior=-1e-5"],
+        &["--size-prior", "must not be negative"],
+    );
 }
 
 #[test]

@@ -61,6 +61,11 @@ pub struct Args {
     /// Weight of the pull towards the model's own numbers.
     #[arg(long, default_value_t = 0.001)]
     lambda: f64,
+    /// Weight of the size prior: each part's size is pulled towards the model's by the
+    /// square of its log ratio, so a part the pictures barely show keeps its proportions
+    /// [paper: 0, far: 1e-5].
+    #[arg(long)]
+    size_prior: Option<f64>,
     /// The optimiser (the paper's: SGD; Adam moves far targets faster) [paper: sgd,
     /// far: adam].
     #[arg(long, value_enum)]
@@ -215,6 +220,7 @@ fn settings(args: &Args, sigma: (f64, f64)) -> Settings {
         rounds: args.rounds,
         warm: args.warm,
         lambda: args.lambda,
+        size_prior: args.size_prior.unwrap_or(base.size_prior),
         optimizer: args.optimizer.map_or(base.optimizer, Into::into),
         momentum: args.momentum,
         single_run: args.single_run,

@@ -18,7 +18,7 @@ use crate::fit::loss::{LossSpec, Target};
 use crate::fit::optimize::Optimizer;
 use crate::fit::targets::{TargetSet, load_target_dir};
 use crate::fit::{
-    DAMPED_FLOOR, FitError, FitOptions, FitResult, Parametric, Stage, constraint_basis,
+    DAMPED_FLOOR, FitError, FitOptions, FitResult, Parametric, SIZE_PRIOR, Stage, constraint_basis,
     fit_measured, staged,
 };
 use crate::front::source::SourceMap;
@@ -57,6 +57,8 @@ pub struct Settings {
     pub warm: Option<usize>,
     /// Weight of the pull towards the model's own numbers; not negative.
     pub lambda: f64,
+    /// Weight of the size prior ([`FitOptions::size_prior`]); not negative.
+    pub size_prior: f64,
     pub optimizer: OptimizerChoice,
     /// Momentum of SGD; not negative.
     pub momentum: f64,
@@ -117,6 +119,7 @@ impl Settings {
             refine: 2,
             border: 0.125,
             soft_edges: SoftEdges::Blurred,
+            size_prior: SIZE_PRIOR,
             ..Settings::paper()
         }
     }
@@ -132,6 +135,7 @@ impl Settings {
             rounds: fit.rounds,
             warm: None,
             lambda: fit.lambda,
+            size_prior: fit.size_prior,
             optimizer: OptimizerChoice::Sgd,
             momentum: 0.0,
             single_run: false,
@@ -160,6 +164,7 @@ impl Settings {
             iterations: self.iterations.max(1),
             rounds: self.rounds.max(1),
             lambda: self.lambda,
+            size_prior: self.size_prior,
             optimizer: match self.optimizer {
                 OptimizerChoice::Sgd => Optimizer::Sgd {
                     momentum: self.momentum,
@@ -194,6 +199,7 @@ impl Settings {
         let numbers = [
             self.lr,
             self.lambda,
+            self.size_prior,
             self.blur,
             self.shading,
             self.sharpen,
@@ -202,7 +208,7 @@ impl Settings {
         ];
         let bad = numbers.iter().any(|v| !v.is_finite() || *v < 0.0);
         if bad || self.lr == 0.0 {
-            return Err("--lr must be positive; --lambda, --blur, --shading, --sharpen, --momentum and --reach must not be negative".into());
+            return Err("--lr must be positive; --lambda, --size-prior, --blur, --shading, --sharpen, --momentum and --reach must not be negative".into());
         }
         Ok(())
     }

@@ -21,6 +21,7 @@ use super::options::{
     FitOptions, GUARD_SWEEPS, HARD_SIGMA, PROPORTIONS_POOLING, RELATIVE_FLOOR, STEP_HALVINGS,
     SoftEdges,
 };
+use super::prior::Prior;
 use super::uncertainty::{AtPoint, Information};
 use super::{Parametric, Stage, albedo, frame, polish, proportions, revive, stages};
 use crate::ir::Affine;
@@ -162,6 +163,8 @@ pub struct Fitter<'a> {
     drawable: Vec<bool>,
     /// Lower bounds `f(x) ≥ min` that keep every part a solid.
     guards: Vec<(Affine, f64)>,
+    /// The regulariser: what the fit believes before the pictures.
+    prior: Prior,
     /// How far one unit of an optimiser variable moves each slot.
     scales: Vec<f64>,
     /// The damped optimiser each stage reruns with, if any.
@@ -239,6 +242,12 @@ impl<'a> Fitter<'a> {
         // Parts that start out drawable must stay so.
         let drawable = problem.geoms(&problem.x0).iter().map(|g| g.valid).collect();
         let guards = problem.guards(opts.min_extent * problem.scale);
+        let prior = Prior::new(
+            &problem,
+            opts.lambda,
+            opts.size_prior,
+            opts.min_extent * problem.scale,
+        );
         let max_level = frame::coarsest_level(&cameras, opts.levels);
         let halved = if opts.pooled {
             Vec::new()
@@ -263,6 +272,7 @@ impl<'a> Fitter<'a> {
             max_level,
             drawable,
             guards,
+            prior,
             looks: Memo::default(),
             judged: Memo::default(),
         })
@@ -504,17 +514,9 @@ impl<'a> Fitter<'a> {
         }
     }
 
-    /// The regulariser `λ‖(x − anchor)/size‖²` and its gradient.
+    /// The regulariser at `x` ([`Prior`]) and its gradient.
     fn reg(&self, x: &[f64]) -> (f64, Vec<f64>) {
-        let problem = &*self.problem;
-        let mut v = 0.0;
-        let mut g = vec![0.0; x.len()];
-        for i in 0..x.len() {
-            let r = (x[i] - problem.anchor[i]) / problem.scale;
-            v += r * r;
-            g[i] = 2.0 * self.opts.lambda * r / problem.scale;
-        }
-        (self.opts.lambda * v, g)
+        self.prior.at(x)
     }
 
     /// Every part that started drawable is drawable at `x`.

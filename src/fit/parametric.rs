@@ -133,8 +133,30 @@ impl Parametric {
     /// axis-aligned transform) stays at least `min_extent` in world units, radii stay
     /// non-negative. Only bounds that hold at `x₀` are returned.
     pub fn guards(&self, min_extent: f64) -> Vec<(Affine, f64)> {
-        let mut out: Vec<(Affine, f64)> = Vec::new();
-        let x0 = &self.x0;
+        self.size_forms(min_extent)
+            .into_iter()
+            .map(|(f, min)| (f, min.unwrap_or(0.0)))
+            .filter(|(f, min)| f.eval(&self.x0) >= *min)
+            .collect()
+    }
+
+    /// The forms of the parts' sizes a size prior weighs: each extent of a box, a frustum's
+    /// height and the sum of its radii, a sphere's radius, each scale factor of an
+    /// axis-aligned transform (signed so that it is positive), each one that some slot
+    /// moves and that is positive at the anchor.
+    pub fn sizes(&self) -> Vec<Affine> {
+        self.size_forms(0.0)
+            .into_iter()
+            .filter(|(_, min)| min.is_some())
+            .map(|(f, _)| f)
+            .filter(|f| !f.is_constant() && f.eval(&self.anchor) > 0.0)
+            .collect()
+    }
+
+    /// Each size form with the least it may be for a world extent of `min_extent` (`None`
+    /// for a single radius of a frustum, which a cone has at 0).
+    fn size_forms(&self, min_extent: f64) -> Vec<(Affine, Option<f64>)> {
+        let mut out: Vec<(Affine, Option<f64>)> = Vec::new();
         for (i, (forms, &(kind, _))) in self.forms.iter().zip(&self.kinds).enumerate() {
             let g = PartGeom::from_part(&self.base[i]);
             let col = |j: usize| -> f64 {
@@ -145,29 +167,26 @@ impl Parametric {
                     .max(FIT_DIVISOR_FLOOR)
             };
             let local = [g.hi[0] - g.lo[0], g.hi[1] - g.lo[1], g.hi[2] - g.lo[2]];
-            let mut push = |f: &Option<Affine>, sign: f64, min: f64| {
+            let mut push = |f: &Option<Affine>, sign: f64, min: Option<f64>| {
                 if let Some(f) = f {
-                    let f = f.scale(sign);
-                    if f.eval(x0) >= min {
-                        out.push((f, min));
-                    }
+                    out.push((f.scale(sign), min));
                 }
             };
             match kind {
                 Kind::Box => {
                     for a in 0..3 {
-                        push(&forms[12 + a], 1.0, min_extent / col(a));
+                        push(&forms[12 + a], 1.0, Some(min_extent / col(a)));
                     }
                 }
                 Kind::Frustum => {
-                    push(&forms[12], 1.0, min_extent / col(2));
-                    push(&forms[13], 1.0, 0.0);
-                    push(&forms[14], 1.0, 0.0);
+                    push(&forms[12], 1.0, Some(min_extent / col(2)));
+                    push(&forms[13], 1.0, None);
+                    push(&forms[14], 1.0, None);
                     if let (Some(a), Some(b)) = (&forms[13], &forms[14]) {
-                        push(&Some(a.add(b)), 1.0, min_extent / col(0).max(col(1)));
+                        push(&Some(a.add(b)), 1.0, Some(min_extent / col(0).max(col(1))));
                     }
                 }
-                Kind::Sphere => push(&forms[12], 1.0, min_extent / col(0)),
+                Kind::Sphere => push(&forms[12], 1.0, Some(min_extent / col(0))),
             }
             // Scale factors of an axis-aligned map keep their sign and some size.
             let aligned =
@@ -177,7 +196,7 @@ impl Parametric {
                     for c in 0..3 {
                         let v = g.theta[4 * r + c];
                         if v != 0.0 && local[c] > 0.0 {
-                            push(&forms[4 * r + c], v.signum(), min_extent / local[c]);
+                            push(&forms[4 * r + c], v.signum(), Some(min_extent / local[c]));
                         }
                     }
                 }
