@@ -208,4 +208,4 @@ pub const MIN_LEVEL_SIDE: u32 = 16;
 /// of the image loss (per view a mean over its pixels): a part ten times its size in the
 /// model costs `5.3e-5`, in a 256-pixel view about what moving a 50-pixel edge of the
 /// silhouette by a tenth of a pixel costs; a doubling costs `4.8e-6`.
-pub const SIZE_PRIOR: f64 = 1e-5;
+pub const SIZE_PRIOR: f64 = 0.000_01;
