@@ -13,6 +13,7 @@
 //! paper's schedule instead of the default; `far` is the default's recipe by name),
 //! `FIT_FAMILIES_REACH` (the schedule's [`Settings::reach`] instead),
 //! `FIT_FAMILIES_SIZE_PRIOR` (its [`Settings::size_prior`] instead),
+//! `FIT_FAMILIES_TIE_PRIOR` (its [`Settings::tie_prior`] instead),
 //! `FIT_FAMILIES_SOFT_EDGES=sigmoid|blurred` (its [`Settings::soft_edges`] instead),
 //! `FIT_FAMILIES_PREVIEW=1` (OpenSCAD's targets drawn by its preview instead of CGAL),
 //! `FIT_FAMILIES_ONE_COLOUR=1` (one grey per surface instead of a brightness per part),
@@ -175,6 +176,7 @@ fn fit_one(seed: u64, size: u32, source: &str) -> Option<(f64, f64)> {
         settings: Settings {
             reach: env_or("FIT_FAMILIES_REACH", base_settings.reach),
             size_prior: env_or("FIT_FAMILIES_SIZE_PRIOR", base_settings.size_prior),
+            tie_prior: env_or("FIT_FAMILIES_TIE_PRIOR", base_settings.tie_prior),
             soft_edges: soft_edges(base_settings.soft_edges),
             per_item_albedo: std::env::var_os("FIT_FAMILIES_ONE_COLOUR").is_none(),
             ..base_settings

@@ -39,6 +39,9 @@ fn options_from_env() -> FitOptions {
     if let Some(v) = get("FIT_SIZE_PRIOR") {
         o.size_prior = v;
     }
+    if let Some(v) = get("FIT_TIE_PRIOR") {
+        o.tie_prior = v;
+    }
     if let Some(v) = get("FIT_SETTLE") {
         o.settle = v;
     }

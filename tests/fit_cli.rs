@@ -242,6 +242,11 @@ fn bad_target_folders() {
         &["--size-prior=-1e-5"],
         &["--size-prior", "must not be negative"],
     );
+    fails_with(
+        &good,
+        &["--tie-prior=-1e-5"],
+        &["--tie-prior", "must not be negative"],
+    );
 }
 
 #[test]

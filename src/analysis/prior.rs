@@ -19,7 +19,7 @@
 //! (a bench from a chair), so it is left to variations.
 
 use super::candidates::{Candidates, RelationKind};
-use crate::ir::{FeatureKind, Model};
+use crate::ir::{Affine, FeatureKind, Model};
 use crate::tolerance::Tolerance;
 
 /// Whether two parts' bounding boxes touch or overlap.
@@ -93,6 +93,15 @@ pub fn structural_prior(model: &Model, c: &Candidates) -> Vec<usize> {
                 }
             }
         })
+        .collect()
+}
+
+/// The rows of every relation the prior keeps on `model` (each zero there, to tolerance).
+pub fn structural_rows(model: &Model) -> Vec<Affine> {
+    let c = super::find_candidates(model);
+    structural_prior(model, &c)
+        .into_iter()
+        .flat_map(|i| c.list[i].rows.iter().cloned())
         .collect()
 }
 

@@ -66,6 +66,12 @@ pub struct Args {
     /// [paper: 0, far: 1e-5].
     #[arg(long)]
     size_prior: Option<f64>,
+    /// Weight of the tie prior: the model's contacts and repeats hold unless the pictures
+    /// pull them apart (a pull of one pixel is resisted most, a clear break costs a
+    /// constant), so numbers the pictures barely show keep their relations [paper: 0,
+    /// far: 1e-5].
+    #[arg(long)]
+    tie_prior: Option<f64>,
     /// The optimiser (the paper's: SGD; Adam moves far targets faster) [paper: sgd,
     /// far: adam].
     #[arg(long, value_enum)]
@@ -221,6 +227,7 @@ fn settings(args: &Args, sigma: (f64, f64)) -> Settings {
         warm: args.warm,
         lambda: args.lambda,
         size_prior: args.size_prior.unwrap_or(base.size_prior),
+        tie_prior: args.tie_prior.unwrap_or(base.tie_prior),
         optimizer: args.optimizer.map_or(base.optimizer, Into::into),
         momentum: args.momentum,
         single_run: args.single_run,

@@ -18,8 +18,8 @@ use crate::fit::loss::{LossSpec, Target};
 use crate::fit::optimize::Optimizer;
 use crate::fit::targets::{TargetSet, load_target_dir};
 use crate::fit::{
-    DAMPED_FLOOR, FitError, FitOptions, FitResult, Parametric, SIZE_PRIOR, Stage, constraint_basis,
-    fit_measured, staged,
+    DAMPED_FLOOR, FitError, FitOptions, FitResult, Parametric, SIZE_PRIOR, Stage, TIE_PRIOR,
+    constraint_basis, fit_measured, staged,
 };
 use crate::front::source::SourceMap;
 use crate::ir::Model;
@@ -59,6 +59,8 @@ pub struct Settings {
     pub lambda: f64,
     /// Weight of the size prior ([`FitOptions::size_prior`]); not negative.
     pub size_prior: f64,
+    /// Weight of the tie prior ([`FitOptions::tie_prior`]); not negative.
+    pub tie_prior: f64,
     pub optimizer: OptimizerChoice,
     /// Momentum of SGD; not negative.
     pub momentum: f64,
@@ -109,7 +111,7 @@ impl Settings {
     /// The default: the recipe for pictures far from the model (and near ones; started at
     /// the truth it stays there): Adam at 0.01, settling, two sweeps of face moves and of
     /// refining moves, a border of an eighth of the picture, soft rounds on blurred area
-    /// coverage (least at the truth for parts of any width).
+    /// coverage (least at the truth for parts of any width), the size and tie priors.
     pub fn far() -> Settings {
         Settings {
             lr: 0.01,
@@ -120,6 +122,7 @@ impl Settings {
             border: 0.125,
             soft_edges: SoftEdges::Blurred,
             size_prior: SIZE_PRIOR,
+            tie_prior: TIE_PRIOR,
             ..Settings::paper()
         }
     }
@@ -136,6 +139,7 @@ impl Settings {
             warm: None,
             lambda: fit.lambda,
             size_prior: fit.size_prior,
+            tie_prior: fit.tie_prior,
             optimizer: OptimizerChoice::Sgd,
             momentum: 0.0,
             single_run: false,
@@ -165,6 +169,7 @@ impl Settings {
             rounds: self.rounds.max(1),
             lambda: self.lambda,
             size_prior: self.size_prior,
+            tie_prior: self.tie_prior,
             optimizer: match self.optimizer {
                 OptimizerChoice::Sgd => Optimizer::Sgd {
                     momentum: self.momentum,
@@ -200,6 +205,7 @@ impl Settings {
             self.lr,
             self.lambda,
             self.size_prior,
+            self.tie_prior,
             self.blur,
             self.shading,
             self.sharpen,
@@ -208,7 +214,7 @@ impl Settings {
         ];
         let bad = numbers.iter().any(|v| !v.is_finite() || *v < 0.0);
         if bad || self.lr == 0.0 {
-            return Err("--lr must be positive; --lambda, --size-prior, --blur, --shading, --sharpen, --momentum and --reach must not be negative".into());
+            return Err("--lr must be positive; --lambda, --size-prior, --tie-prior, --blur, --shading, --sharpen, --momentum and --reach must not be negative".into());
         }
         Ok(())
     }

@@ -242,12 +242,6 @@ impl<'a> Fitter<'a> {
         // Parts that start out drawable must stay so.
         let drawable = problem.geoms(&problem.x0).iter().map(|g| g.valid).collect();
         let guards = problem.guards(opts.min_extent * problem.scale);
-        let prior = Prior::new(
-            &problem,
-            opts.lambda,
-            opts.size_prior,
-            opts.min_extent * problem.scale,
-        );
         let max_level = frame::coarsest_level(&cameras, opts.levels);
         let halved = if opts.pooled {
             Vec::new()
@@ -258,6 +252,7 @@ impl<'a> Fitter<'a> {
             .iter()
             .map(Camera::pixel_size)
             .fold(f64::INFINITY, f64::min);
+        let prior = Prior::new(&problem, opts, pixel);
         Ok(Fitter {
             opts,
             pixel,

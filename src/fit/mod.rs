@@ -25,7 +25,7 @@
 //! the update rules and the spaces they move in; `descent` a stage's run as it goes (its
 //! steps' trust region in pixels); [`stages`], [`proportions`], [`albedo`],
 //! [`polish`], [`frame`] the pieces named above; [`prior`] the regulariser (the paper's
-//! pull towards the model's numbers, a size prior); [`targets`] reads target folders; [`uncertainty`] the
+//! pull towards the model's numbers, a size prior, a tie prior); [`targets`] reads target folders; [`uncertainty`] the
 //! numbers' Fisher information at the fit's point; [`memo`] keeps the lighting and the
 //! judge's loss at recent points, so asking again at one does not render again.
 //!
@@ -54,7 +54,7 @@ pub mod uncertainty;
 
 pub use check::{FitError, check};
 pub use fitter::{FitResult, Fitter, Progress, Step, fit, fit_measured};
-pub use options::{DAMPED_FLOOR, FitOptions, HARD_SIGMA, SIZE_PRIOR, SoftEdges};
+pub use options::{DAMPED_FLOOR, FitOptions, HARD_SIGMA, SIZE_PRIOR, SoftEdges, TIE_PRIOR};
 pub use parametric::Parametric;
 pub use polish::polish;
 pub use stages::{

@@ -62,6 +62,11 @@ pub struct FitOptions {
     /// double, so where the pictures barely tell (a back panel behind the boards in front
     /// of it) a thin part stays thin rather than growing into the hollow. 0: none.
     pub size_prior: f64,
+    /// Weight of the tie prior `Σ ln(1 + (r/p)²)` over the residuals `r` of the model's
+    /// structural relations ([`super::parametric::Parametric::ties`]; `p` the finest
+    /// pixel): a contact or a repeat holds unless the pictures pull it apart by more than
+    /// this resists, so numbers the pictures barely see keep their ties. 0: none.
+    pub tie_prior: f64,
     /// Match each view's shading to its target at the start of every round.
     pub fit_shading: bool,
     /// With `fit_shading`: fit an albedo per item too, so parts of other colours in the
@@ -121,6 +126,7 @@ impl Default for FitOptions {
             rounds: 10,
             lambda: 0.001,
             size_prior: 0.0,
+            tie_prior: 0.0,
             optimizer: Optimizer::sgd(),
             sigma: (2.0, 0.25),
             coverage: true,
@@ -209,3 +215,9 @@ pub const MIN_LEVEL_SIDE: u32 = 16;
 /// model costs `5.3e-5`, in a 256-pixel view about what moving a 50-pixel edge of the
 /// silhouette by a tenth of a pixel costs; a doubling costs `4.8e-6`.
 pub const SIZE_PRIOR: f64 = 0.000_01;
+
+/// The tie prior's weight in the default schedule ([`FitOptions::tie_prior`]), in units of
+/// the image loss: a tie pulled a pixel apart costs `0.69` of it, ten pixels `4.6`; it
+/// resists most (`1/p` per world unit) at one pixel, far less than a visible edge of a
+/// dozen pixels pulls.
+pub const TIE_PRIOR: f64 = 0.000_01;

@@ -28,6 +28,11 @@ pub struct Parametric {
     pub rings: Vec<u32>,
     /// Each part's face planes (axis, high side, affine form), for face moves.
     pub faces: Vec<Vec<(u8, bool, Affine)>>,
+    /// The relations the model's structure singles out
+    /// ([`crate::analysis::prior::structural_rows`]: contacts, repeats, coaxiality), one
+    /// row each, zero at the model: what the tie prior ([`super::prior`]) keeps unless the
+    /// pictures say otherwise.
+    pub ties: Vec<Affine>,
 }
 
 impl Parametric {
@@ -61,6 +66,7 @@ impl Parametric {
                 }
                 faces
             },
+            ties: crate::analysis::prior::structural_rows(model),
         }
     }
 

@@ -78,10 +78,8 @@ pub fn constraint_basis(model: &Model) -> DMatrix<f64> {
 /// The subspace of the structural prior (`analysis::prior`): contacts, coaxiality,
 /// repeated parts' sizes, placements, a bar's profile.
 pub fn structure_basis(model: &Model) -> DMatrix<f64> {
-    let c = crate::analysis::find_candidates(model);
-    let keep = crate::analysis::prior::structural_prior(model, &c);
-    let rows: Vec<&Affine> = keep.iter().flat_map(|&i| c.list[i].rows.iter()).collect();
-    basis_of(&rows, model.slots.len())
+    let rows = crate::analysis::prior::structural_rows(model);
+    basis_of(&rows.iter().collect::<Vec<_>>(), model.slots.len())
 }
 
 /// How much each slot acts along each world axis: from every part parameter the slot
