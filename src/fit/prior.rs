@@ -153,15 +153,7 @@ fn add_form(g: &mut [f64], f: &Affine, k: f64) {
 /// Whether rows `a` and `b` are the same relation (equal, or one the negation of the other).
 fn same_row(a: &Affine, b: &Affine) -> bool {
     let close = |x: f64, y: f64| (x - y).abs() <= RELATIVE_ROUNDOFF * x.abs().max(y.abs()).max(1.0);
-    let same = |sign: f64| {
-        a.terms.len() == b.terms.len()
-            && close(a.constant, sign * b.constant)
-            && a.terms
-                .iter()
-                .zip(&b.terms)
-                .all(|(&(s, x), &(t, y))| s == t && close(x, sign * y))
-    };
-    same(1.0) || same(-1.0)
+    termwise(a, b, close) || termwise(a, b, |x, y| close(x, -y))
 }
 
 /// Whether sizes `f` and `g` (`f_at` and `g_at` at the anchor) change by the same ratio
@@ -170,12 +162,18 @@ fn same_row(a: &Affine, b: &Affine) -> bool {
 /// carry it.
 fn same_ratio(f: &Affine, f_at: f64, g: &Affine, g_at: f64) -> bool {
     let close = |a: f64, b: f64| (a - b).abs() <= RELATIVE_ROUNDOFF * a.abs().max(b.abs());
+    termwise(f, g, |a, b| close(a / f_at, b / g_at))
+}
+
+/// Whether forms `f` and `g` have the same slots and `close` holds between their constants
+/// and between each pair of coefficients.
+fn termwise(f: &Affine, g: &Affine, close: impl Fn(f64, f64) -> bool) -> bool {
     f.terms.len() == g.terms.len()
-        && close(f.constant / f_at, g.constant / g_at)
+        && close(f.constant, g.constant)
         && f.terms
             .iter()
             .zip(&g.terms)
-            .all(|(&(s, a), &(t, b))| s == t && close(a / f_at, b / g_at))
+            .all(|(&(s, a), &(t, b))| s == t && close(a, b))
 }
 
 #[cfg(test)]
