@@ -379,7 +379,8 @@ fn three_prompts_each_recover_their_own_kind() {
     assert!(out.status.success(), "{}", stderr(&out));
     // Sixty rounds at 64 pixels (the default is 400 at 256): each variation is recovered,
     // IoU ≥ 0.9 with its hidden kind (the chair starts at 0.33, 0.76 and 0.75; measured
-    // 0.933, 0.947, 0.922).
+    // 0.987, 0.979, 0.980 as the mean of the last stage's rounds, 0.933, 0.947, 0.922 as
+    // the last round's numbers).
     let chair = model_of("chair.scad", CHAIR);
     for ((kind, target), name) in models.iter().zip(["bench", "stool", "bar_stool"]) {
         let text = std::fs::read_to_string(dir.join(format!("run/{name}.scad"))).unwrap();
@@ -404,9 +405,9 @@ fn three_prompts_each_recover_their_own_kind() {
         );
         let reached = iou((&a, &preset.csg), (&b, &target.csg));
         eprintln!("{kind}: preset IoU {reached:.3}");
-        // Issue 19 asks 0.95; measured 0.891, 0.926, 0.949 (README). This holds the
-        // presets to what they reach now, so that a change that loses them fails.
-        assert!(reached >= 0.85, "{kind}: preset IoU {reached:.3}");
+        // Issue 19's bar; measured 0.978, 0.981, 0.989 (0.891, 0.926, 0.949 from the
+        // last round's numbers instead of the last stage's mean).
+        assert!(reached >= 0.95, "{kind}: preset IoU {reached:.3}");
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }

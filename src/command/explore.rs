@@ -206,13 +206,7 @@ fn started(
         prompts: names_of(&prompts)
             .into_iter()
             .zip(prompts)
-            .map(|(name, prompt)| PromptState {
-                prompt,
-                name,
-                round: 0,
-                x: x0.clone(),
-                loss: Vec::new(),
-            })
+            .map(|(name, prompt)| PromptState::new(prompt, name, x0.clone()))
             .collect(),
     })
 }
@@ -229,7 +223,10 @@ fn resumed(
         .load()
         .map_err(|text| Stopped::input(std::mem::take(messages), "E0803", text))?;
     let slots = model.slots.len();
-    if let Some(p) = state.prompts.iter().find(|p| p.x.len() != slots) {
+    let numbers = |p: &PromptState| {
+        p.x.len() != slots || !(p.tail.sum.is_empty() || p.tail.sum.len() == slots)
+    };
+    if let Some(p) = state.prompts.iter().find(|p| numbers(p)) {
         let text = format!(
             "`{}`: prompt `{}` has {} numbers but {} has {slots}; was the model changed?",
             folder.state_path().display(),
@@ -248,13 +245,9 @@ fn resumed(
     }
     let names = names_of(&prompts);
     for (prompt, name) in prompts.into_iter().zip(names).skip(state.prompts.len()) {
-        state.prompts.push(PromptState {
-            prompt,
-            name,
-            round: 0,
-            x: model.slot_values(),
-            loss: Vec::new(),
-        });
+        state
+            .prompts
+            .push(PromptState::new(prompt, name, model.slot_values()));
     }
     let done: usize = state
         .prompts
@@ -365,7 +358,7 @@ impl Job {
             .final_cameras()
             .map_err(|text| Stopped::input(Vec::new(), "E0801", text))?;
         for p in &self.state.prompts {
-            for (v, img) in explorer.render(&p.x, &cameras).iter().enumerate() {
+            for (v, img) in explorer.render(&p.variation(), &cameras).iter().enumerate() {
                 let path = gallery::final_view_path(&self.folder, &p.name, v);
                 self.folder
                     .write(&path, &img.encode_png())

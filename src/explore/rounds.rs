@@ -4,7 +4,8 @@
 //! legs from vanishing), and takes `iterations` steps of the image loss towards the kept
 //! pictures with the project's [`Fitter`](crate::fit::Fitter) (one round of one stage, from
 //! the current numbers, its steps bounded in pixels; the stages of the fit's default
-//! schedule spread over the prompt's rounds, [`Plan`]).
+//! schedule spread over the prompt's rounds, [`Plan`]). The prompt's variation is the mean
+//! of the numbers after each round of the last stage ([`super::run::Tail`]).
 //!
 //! Invariants: a round is a function of the numbers it starts from, the run's seed, the
 //! prompt's name, the round's number and the prompt's number of rounds (cameras and
@@ -136,6 +137,12 @@ impl Plan {
         Plan {
             stages: staged(model, rounds, rounds / 2),
         }
+    }
+
+    /// The round (from 0) the last stage starts at.
+    fn last_from(&self) -> usize {
+        let n = self.stages.len().saturating_sub(1);
+        self.stages[..n].iter().map(|s| s.rounds).sum()
     }
 
     /// The stage of round `round` (from 0), for one round.
@@ -394,7 +401,9 @@ impl<'a> Explorer<'a> {
     }
 
     /// Runs prompt `index` of `state` to the end, saving after every round, and writes its
-    /// variation; `progress` is told (rounds done, rounds, loss) after each round.
+    /// variation (the mean of the last stage's rounds, with the uncertainty the last
+    /// round's guidance gives); `progress` is told (rounds done, rounds, loss) after each
+    /// round.
     pub fn run_prompt(
         &self,
         folder: &RunFolder,
@@ -414,22 +423,24 @@ impl<'a> Explorer<'a> {
             let p = &mut state.prompts[index];
             p.round = round + 1;
             p.x = out.x;
+            p.tally(round, self.plan.last_from());
             information = out.information;
             p.loss.push(out.loss);
             folder.save(state).map_err(ExploreError::Run)?;
             progress(round + 1, total, out.loss);
         }
         let p = &state.prompts[index];
+        let at = p.variation();
         let path = folder.variation_path(&p.name);
         // The sidecar goes first: a variation file is only ever beside its own sidecar.
         // (A prompt finished by an earlier run keeps the sidecar that run wrote.)
         if let Some(info) = information {
-            let u = info.uncertainty(self.model, &p.x);
+            let u = info.uncertainty(self.model, &at);
             folder
                 .write(&sidecar_path(&path), u.to_json().as_bytes())
                 .map_err(ExploreError::Run)?;
         }
-        let text = self.variation_text(&p.x);
+        let text = self.variation_text(&at);
         folder
             .write(&path, text.as_bytes())
             .map_err(ExploreError::Run)

@@ -40,6 +40,69 @@ pub struct PromptState {
     pub x: Vec<f64>,
     /// The image loss after each round done.
     pub loss: Vec<f64>,
+    /// The rounds of the schedule's last stage done so far, whose mean is the prompt's
+    /// variation ([`PromptState::variation`]).
+    #[serde(default)]
+    pub tail: Tail,
+}
+
+/// The numbers after each round of the schedule's last stage, summed. Each round fits a
+/// few steps towards pictures that disagree with each other in every detail (a sample
+/// draws a leg a little longer, another leaves it out), so the rounds' ends scatter around
+/// what the pictures agree on, and their mean is nearer to it than the last one is: the
+/// iterate average of a stochastic descent. The early stages move in subspaces of their
+/// own and are left out.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct Tail {
+    /// The round (from 0) the last stage starts at.
+    pub from: usize,
+    /// How many rounds `sum` holds.
+    pub rounds: usize,
+    pub sum: Vec<f64>,
+}
+
+impl PromptState {
+    /// A prompt no round has run for, at the model's numbers `x`.
+    pub fn new(prompt: String, name: String, x: Vec<f64>) -> PromptState {
+        PromptState {
+            prompt,
+            name,
+            round: 0,
+            x,
+            loss: Vec::new(),
+            tail: Tail::default(),
+        }
+    }
+
+    /// Counts the current numbers, those after round `round` (from 0), into the tail when
+    /// the round is one of the last stage's, which starts at round `from`. A tail summed
+    /// where the stage started elsewhere (a run resumed with other `--rounds`) starts again.
+    pub fn tally(&mut self, round: usize, from: usize) {
+        if round < from {
+            return;
+        }
+        if self.tail.from != from || self.tail.sum.len() != self.x.len() {
+            self.tail = Tail {
+                from,
+                rounds: 0,
+                sum: vec![0.0; self.x.len()],
+            };
+        }
+        for (a, v) in self.tail.sum.iter_mut().zip(&self.x) {
+            *a += v;
+        }
+        self.tail.rounds += 1;
+    }
+
+    /// The prompt's variation: the mean of its tail's rounds, or the current numbers
+    /// before the last stage has run a round.
+    pub fn variation(&self) -> Vec<f64> {
+        if self.tail.rounds == 0 || self.tail.sum.len() != self.x.len() {
+            return self.x.clone();
+        }
+        let n = self.tail.rounds as f64;
+        self.tail.sum.iter().map(|a| a / n).collect()
+    }
 }
 
 impl State {
@@ -182,16 +245,49 @@ mod tests {
             seed: 7,
             rounds: 3,
             prompts: vec![PromptState {
-                prompt: "a".into(),
-                name: "a".into(),
                 round: 1,
-                x: vec![0.1 + 0.2, 1.0 / 3.0, -7.123456789012345e-7],
                 loss: vec![0.5],
+                ..PromptState::new(
+                    "a".into(),
+                    "a".into(),
+                    vec![0.1 + 0.2, 1.0 / 3.0, -7.123456789012345e-7],
+                )
             }],
         };
+        let mut state = state;
+        state.prompts[0].tally(0, 0);
         folder.save(&state).unwrap();
         assert_eq!(folder.load().unwrap(), state);
         assert!(!state.finished());
         std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn the_variation_is_the_mean_of_the_last_stages_rounds() {
+        let mut p = PromptState::new("a".into(), "a".into(), vec![1.0, 10.0]);
+        assert_eq!(p.variation(), [1.0, 10.0]);
+        // Rounds 0 and 1 are the warm stages'; the last stage starts at round 2.
+        for (round, x) in [[5.0, 50.0], [2.0, 20.0], [3.0, 30.0], [5.0, 40.0]]
+            .into_iter()
+            .enumerate()
+        {
+            p.x = x.to_vec();
+            p.tally(round, 2);
+        }
+        assert_eq!(p.tail.rounds, 2);
+        assert_eq!(p.variation(), [4.0, 35.0]);
+        // Resumed with more rounds the last stage starts later: its mean starts again.
+        p.x = vec![7.0, 70.0];
+        p.tally(4, 3);
+        assert_eq!(p.variation(), [7.0, 70.0]);
+    }
+
+    #[test]
+    fn a_state_written_before_the_tail_existed_reads_with_an_empty_one() {
+        let text = r#"{"version":1,"model":"m.scad","object":"chair","seed":7,"rounds":3,
+            "prompts":[{"prompt":"a","name":"a","round":1,"x":[2.5],"loss":[0.5]}]}"#;
+        let state: State = serde_json::from_str(text).unwrap();
+        assert_eq!(state.prompts[0].tail, Tail::default());
+        assert_eq!(state.prompts[0].variation(), [2.5]);
     }
 }
