@@ -3,48 +3,18 @@
 //! failing server is set aside, and bad answers stop the run cleanly with the rounds done
 //! kept.
 
+#[path = "explore_support/chair.rs"]
+mod chair;
 mod common;
 #[path = "explore_support/server.rs"]
 mod server;
 
+use chair::{CHAIR, bench, explore_chair, legs_and_back};
 use reparamc::geom::iou;
 use reparamc::ir::Model;
 use server::{Mode, Server, model_of, start, start_for};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
-
-const CHAIR: &str = include_str!("../examples/chair.scad");
-
-/// The hidden target: the chair made into a bench (wider, with a lower back).
-fn bench() -> String {
-    CHAIR
-        .replace("translate([-50, -50, -70])", "translate([-80, -50, -70])")
-        .replace("translate([35, -50, -70])", "translate([65, -50, -70])")
-        .replace("translate([-50, 35, -70])", "translate([-80, 35, -70])")
-        .replace("translate([35, 35, -70])", "translate([65, 35, -70])")
-        .replace(
-            "translate([-50, -50, 0]) cube([100, 100, 15])",
-            "translate([-80, -50, 0]) cube([160, 100, 15])",
-        )
-        .replace(
-            "translate([-50, 35, 15]) cube([100, 15, 70])",
-            "translate([-80, 35, 15]) cube([160, 15, 45])",
-        )
-        .replace("translate([-50, -50, 15])", "translate([-80, -50, 15])")
-        .replace("translate([35, -50, 15])", "translate([65, -50, 15])")
-}
-
-/// The chair with legs `legs` high and a back `back` high: a stool, a bar stool.
-fn legs_and_back(legs: u32, back: u32) -> String {
-    let mut t = CHAIR.to_string();
-    for (x, y) in [(-50, -50), (35, -50), (-50, 35), (35, 35)] {
-        t = t.replace(
-            &format!("translate([{x}, {y}, -70]) cube([15, 15, 70])"),
-            &format!("translate([{x}, {y}, -{legs}]) cube([15, 15, {legs}])"),
-        );
-    }
-    t.replace("cube([100, 15, 70])", &format!("cube([100, 15, {back}])"))
-}
 
 fn folder(name: &str) -> PathBuf {
     let d = std::env::temp_dir().join(format!("reparamc_explore_{name}_{}", std::process::id()));
@@ -61,19 +31,11 @@ fn explore(dir: &Path, servers: &[&Server], extra: &[&str]) -> Output {
 
 /// The command [`explore`] runs.
 fn command(dir: &Path, servers: &[&Server], extra: &[&str]) -> Command {
-    let mut cmd = Command::new(env!("CARGO_BIN_EXE_reparamc"));
-    cmd.arg("explore")
-        .arg(dir.join("chair.scad"))
-        .args(["--object", "chair", "-o"])
-        .arg(dir.join("chair_param.scad"))
-        .arg("--run")
-        .arg(dir.join("run"))
-        .args(["--size", "64", "--diffusion-size", "64", "--batch", "3"])
-        .args(["--iterations", "30", "--timeout", "20", "--retries", "1"]);
-    for s in servers {
-        cmd.args(["--diffusion", &s.url]);
-    }
-    cmd.args(extra).env_remove("OPENAI_API_KEY");
+    let urls: Vec<&str> = servers.iter().map(|s| s.url.as_str()).collect();
+    let mut cmd = explore_chair(dir, &urls);
+    cmd.args(["--size", "64", "--diffusion-size", "64", "--batch", "3"])
+        .args(["--iterations", "30", "--timeout", "20", "--retries", "1"])
+        .args(extra);
     cmd
 }
 
