@@ -81,6 +81,10 @@ pub struct Target {
 /// for a noiseless background; a noisy border raises both.
 const FG_LO: f32 = 0.012;
 const FG_HI: f32 = 0.03;
+/// How many times the background's noise (the 90th percentile of its colour distances)
+/// the thresholds are at least.
+const FG_LO_NOISE: f32 = 3.0;
+const FG_HI_NOISE: f32 = 6.0;
 
 impl Target {
     /// Channels of a picture on a plain background: the background colour is the most
@@ -218,7 +222,14 @@ impl Target {
 
 /// A picture's background colour and the colour distances from it below which a pixel is
 /// background and above which it is foreground (raised above [`FG_LO`], [`FG_HI`] by the
-/// noise of the border's pixels).
+/// noise of the border's background pixels).
+///
+/// The noise is read on the background alone: an object the frame cuts (a picture of
+/// something larger than the view, as a diffusion sample may draw) puts foreground pixels
+/// on the border, and were they read as noise the thresholds would rise above every
+/// foreground colour and the picture would read as empty. A border pixel further from the
+/// background than [`FG_HI`] and than the foreground threshold the border's median would
+/// give is not background.
 fn foreground_thresholds(img: &Rgb) -> ([f32; 3], f32, f32) {
     let background = border_colour(img);
     let mut border: Vec<f32> = border_pixels(img)
@@ -226,8 +237,15 @@ fn foreground_thresholds(img: &Rgb) -> ([f32; 3], f32, f32) {
         .map(|c| colour_distance(c, &background))
         .collect();
     border.sort_by(f32::total_cmp);
-    let noise = border.get(border.len() * 9 / 10).copied().unwrap_or(0.0);
-    (background, FG_LO.max(3.0 * noise), FG_HI.max(6.0 * noise))
+    let median = border.get(border.len() / 2).copied().unwrap_or(0.0);
+    let cap = FG_HI.max(FG_HI_NOISE * median);
+    let own = border.partition_point(|&d| d <= cap);
+    let noise = border[..own].get(own * 9 / 10).copied().unwrap_or(0.0);
+    (
+        background,
+        FG_LO.max(FG_LO_NOISE * noise),
+        FG_HI.max(FG_HI_NOISE * noise),
+    )
 }
 
 /// A quick reading of a picture for comparing pictures with each other, not for fitting:

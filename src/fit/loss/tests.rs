@@ -200,6 +200,27 @@ fn pictures_from_one_renderer_are_told_hard_together() {
     assert_eq!(both[0].foreground(), 30);
 }
 
+/// A picture of something larger than the view: the frame cuts it along a third of its
+/// border, on a background with some noise. Its foreground is still found.
+#[test]
+fn an_object_the_frame_cuts_is_still_foreground() {
+    let mut img = Rgb::new(30, 30, [1.0; 3]);
+    for (i, c) in img.data.iter_mut().enumerate() {
+        // Background noise of up to 0.01 per channel.
+        let n = ((i * 37 % 11) as f32) / 1000.0;
+        *c = [1.0 - n, 1.0 - n, 1.0];
+    }
+    // A box from the top edge down, across all but the outer three columns: 24 of the
+    // 116 border pixels are the box's.
+    for y in 0..20 {
+        for x in 3..27 {
+            img.data[y * 30 + x] = [0.5, 0.4, 0.1];
+        }
+    }
+    let t = Target::from_rgb(&img);
+    assert_eq!(t.foreground(), 20 * 24);
+}
+
 #[test]
 fn background_is_the_border_colour() {
     let mut img = Rgb::new(10, 10, [1.0, 1.0, 0.9]);
