@@ -16,7 +16,7 @@ mod common;
 #[path = "../tests/explore_support/server.rs"]
 mod server;
 
-use chair::{CHAIR, bench, explore_chair, legs_and_back};
+use chair::{CHAIR, explore_chair, three_kinds};
 use common::anchored;
 use reparamc::geom::iou;
 use server::{Mode, model_of, start_for};
@@ -29,11 +29,7 @@ fn main() {
     } else {
         Some("2".into())
     };
-    let kinds = [
-        ("bench", bench()),
-        ("stool", legs_and_back(40, 25)),
-        ("bar stool", legs_and_back(130, 30)),
-    ];
+    let kinds = three_kinds();
     let targets: Vec<(String, reparamc::ir::Model)> = kinds
         .iter()
         .map(|(k, t)| (k.to_string(), model_of("t.scad", t)))

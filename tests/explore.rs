@@ -9,7 +9,7 @@ mod common;
 #[path = "explore_support/server.rs"]
 mod server;
 
-use chair::{CHAIR, bench, explore_chair, legs_and_back};
+use chair::{CHAIR, bench, explore_chair, three_kinds};
 use reparamc::geom::iou;
 use reparamc::ir::Model;
 use server::{Mode, Server, model_of, start, start_for};
@@ -322,11 +322,7 @@ fn walk(dir: &Path) -> Vec<PathBuf> {
 
 #[test]
 fn three_prompts_each_recover_their_own_kind() {
-    let targets = [
-        ("bench", bench()),
-        ("stool", legs_and_back(40, 25)),
-        ("bar stool", legs_and_back(130, 30)),
-    ];
+    let targets = three_kinds();
     let models: Vec<(String, Model)> = targets
         .iter()
         .map(|(k, t)| (k.to_string(), model_of("t.scad", t)))

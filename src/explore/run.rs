@@ -238,7 +238,7 @@ mod tests {
         let dir = std::env::temp_dir().join(format!("reparamc_run_{}", std::process::id()));
         let folder = RunFolder::new(&dir);
         folder.create(&["a".into()]).unwrap();
-        let state = State {
+        let mut state = State {
             version: STATE_VERSION,
             model: "m.scad".into(),
             object: "chair".into(),
@@ -254,7 +254,6 @@ mod tests {
                 )
             }],
         };
-        let mut state = state;
         state.prompts[0].tally(0, 0);
         folder.save(&state).unwrap();
         assert_eq!(folder.load().unwrap(), state);

@@ -38,6 +38,15 @@ pub fn legs_and_back(legs: u32, back: u32) -> String {
     t.replace("cube([100, 15, 70])", &format!("cube([100, 15, {back}])"))
 }
 
+/// The three kinds the loop is asked for, by prompt: a bench, a stool and a bar stool.
+pub fn three_kinds() -> [(&'static str, String); 3] {
+    [
+        ("bench", bench()),
+        ("stool", legs_and_back(40, 25)),
+        ("bar stool", legs_and_back(130, 30)),
+    ]
+}
+
 /// `reparamc explore` on `dir`'s `chair.scad`, writing `chair_param.scad` and the run
 /// folder `run/` there, guided by the img2img servers at `urls`, every other setting the
 /// command's own (no API key passed on).
