@@ -160,36 +160,55 @@ pub fn project_variations(
     values: &[Vec<f64>],
     optional: &[Vec<usize>],
 ) -> Vec<Vec<f64>> {
-    project_variations_keeping(anchors, faces, rows, values, optional, &[], 0.0)
+    let keeping = Keeping {
+        contacts: &[],
+        floors: &[],
+        tolerance: 0.0,
+    };
+    project_variations_keeping(anchors, faces, rows, values, optional, &keeping)
 }
 
-/// As [`project_variations`], and each projection keeps the `contacts`: a contact the
-/// variations keep within their noise is a constraint like the rows, and a gap the noise
+/// What a projection keeps besides the rows: forms that must stay at or above a bound.
+pub struct Keeping<'a> {
+    /// Contact sides the variations keep within their noise.
+    pub contacts: &'a [ContactSide],
+    /// Sizes less their floor (`ranges::size_floors`): each must stay `≥ 0`.
+    pub floors: &'a [Affine],
+    /// How far a side may be broken before it is held.
+    pub tolerance: f64,
+}
+
+/// As [`project_variations`], and each projection keeps the `keeping.contacts`: a contact
+/// the variations keep within their noise is a constraint like the rows, and a gap the noise
 /// left in a variation is noise, not a preset to reproduce (a preset with a gap widens the
 /// sliders' box to settings that part the two). A part a variation does without keeps its
 /// contacts too: nobody saw its numbers there, and the preset's values for it are where
 /// its switch puts it back (the ranges hold them, so a gap there would part it from the
-/// rest at settings inside them). A side the projection breaks by more than `tolerance` is
-/// made to hold at its bound (touching, or the input's own gap), the most broken first, and
-/// the variation projected again until none is broken: a point that keeps every side, near
-/// the nearest one (an active set that only grows; a side that cannot hold with the rows
-/// is left broken).
+/// rest at settings inside them). Every size stays above its floor (`keeping.floors`) the
+/// same way: a preset is a point the sliders can stand on, and a fit that squashed a part
+/// flat (a leg hidden behind a panel) must not leave it at a negative size, which the
+/// ranges would clamp away by moving other sliders. A side the projection breaks by more
+/// than `keeping.tolerance` is made to hold at its bound (touching, or the input's own
+/// gap; the floor), the most broken first, and the variation projected again until none
+/// is broken: a point that keeps every side, near the nearest one (an active set that only
+/// grows; a side that cannot hold with the rows is left broken).
 pub fn project_variations_keeping(
     anchors: &Anchors,
     faces: &Faces,
     rows: &[Affine],
     values: &[Vec<f64>],
     optional: &[Vec<usize>],
-    contacts: &[ContactSide],
-    tolerance: f64,
+    keeping: &Keeping,
 ) -> Vec<Vec<f64>> {
     // Each side less its bound (`form − bound ≥ 0` keeps it; `= 0` holds it there).
-    let at_bound: Vec<Affine> = contacts
+    let at_bound: Vec<Affine> = keeping
+        .contacts
         .iter()
         .map(|c| {
             let bound = c.form.eval(&anchors.input).min(0.0);
             c.form.add(&Affine::constant(-bound))
         })
+        .chain(keeping.floors.iter().cloned())
         .collect();
     values
         .iter()
@@ -208,7 +227,7 @@ pub fn project_variations_keeping(
                 let worst = (0..at_bound.len())
                     .filter(|k| !held.contains(k))
                     .map(|k| (k, -at_bound[k].eval(&p)))
-                    .filter(|&(_, deficit)| deficit > tolerance)
+                    .filter(|&(_, deficit)| deficit > keeping.tolerance)
                     .max_by(|a, b| a.1.total_cmp(&b.1));
                 match worst {
                     Some((k, _)) => held.push(k),
@@ -223,6 +242,7 @@ pub fn project_variations_keeping(
 mod tests {
     use super::*;
     use crate::analysis::contacts::{Slack, common_contacts};
+    use crate::ir::feature::world_intervals;
 
     /// A top resting on a leg, no relation kept between them, and a variation whose noise
     /// left a 2-unit gap where the two meet (within the 3 units its noise explains). The
@@ -262,8 +282,12 @@ mod tests {
         let optional = [vec![]];
         let values = std::slice::from_ref(&noisy);
         let plain = project_variations(&anchors, &faces, &[], values, &optional);
-        let kept =
-            project_variations_keeping(&anchors, &faces, &[], values, &optional, &contacts, 1e-9);
+        let keeping = Keeping {
+            contacts: &contacts,
+            floors: &[],
+            tolerance: 1e-9,
+        };
+        let kept = project_variations_keeping(&anchors, &faces, &[], values, &optional, &keeping);
         assert!(
             gap(&plain[0]) < -1.0,
             "plain projection: {}",
@@ -272,15 +296,66 @@ mod tests {
         assert!(gap(&kept[0]) > -1e-6, "kept: {}", gap(&kept[0]));
         // A variation without the top: its numbers there are where its switch puts it back.
         let without_top = [vec![1]];
-        let kept = project_variations_keeping(
-            &anchors,
-            &faces,
-            &[],
-            values,
-            &without_top,
-            &contacts,
-            1e-9,
-        );
+        let kept =
+            project_variations_keeping(&anchors, &faces, &[], values, &without_top, &keeping);
         assert!(gap(&kept[0]) > -1e-6, "without the top: {}", gap(&kept[0]));
+    }
+
+    /// A top over two short thin legs and a panel between them, kept flush: the legs and
+    /// the panel add up to the top. A variation narrowed the top by 40 and left the rest:
+    /// the legs' faces are the smallest, so the plain projection takes the 40 from them and
+    /// leaves them at negative widths; kept above their floor, the top and the panel give.
+    #[test]
+    fn a_preset_keeps_every_size_above_its_floor() {
+        let model = crate::front::test_model(
+            "translate([0, 0, 50]) cube([100, 20, 10]);\n\
+             cube([10, 2, 5]);\n\
+             translate([90, 0, 0]) cube([10, 2, 5]);\n\
+             translate([10, 0, 0]) cube([80, 20, 50]);\n",
+        );
+        let x_faces = |p: usize| {
+            let [(lo, hi), _, _] = world_intervals(&model.parts[p]).unwrap();
+            (lo.affine().unwrap().clone(), hi.affine().unwrap().clone())
+        };
+        let [top, left, right, panel] = [0, 1, 2, 3].map(x_faces);
+        let rows = vec![
+            left.0.sub(&top.0),
+            right.1.sub(&top.1),
+            panel.0.sub(&left.1),
+            panel.1.sub(&right.0),
+        ];
+        let top_width = top.1.sub(&top.0);
+        let mut narrow = model.slot_values();
+        let slot = top_width.terms[0].0 as usize;
+        narrow[slot] -= 40.0;
+        let anchors = Anchors::of(&model);
+        let faces = Faces::of(&model);
+        let values = std::slice::from_ref(&narrow);
+        let optional = [vec![]];
+        let leg_width = |x: &[f64]| {
+            left.1
+                .sub(&left.0)
+                .eval(x)
+                .min(right.1.sub(&right.0).eval(x))
+        };
+        let plain = project_variations(&anchors, &faces, &rows, values, &optional);
+        assert!(
+            leg_width(&plain[0]) < 0.0,
+            "plain: {}",
+            leg_width(&plain[0])
+        );
+        let floors = crate::analysis::ranges::size_floors(&model);
+        let keeping = Keeping {
+            contacts: &[],
+            floors: &floors,
+            tolerance: 1e-9,
+        };
+        let kept = project_variations_keeping(&anchors, &faces, &rows, values, &optional, &keeping);
+        for f in &floors {
+            assert!(f.eval(&kept[0]) > -1e-6, "a size under its floor: {kept:?}");
+        }
+        for r in &rows {
+            assert!(r.eval(&kept[0]).abs() < 1e-6, "a row broken: {kept:?}");
+        }
     }
 }

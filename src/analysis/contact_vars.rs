@@ -220,7 +220,7 @@ pub fn make_one_contact_variable(
 
 /// Rewrites every slot's expression with free variable `j` replaced by `w = c + a·u`:
 /// `u_j = (w − c − Σ_{i≠j} a_i u_i) / a_j`.
-fn substitute(sol: &mut Solution, (c, a): &(f64, Vec<f64>), j: usize) {
+pub(crate) fn substitute(sol: &mut Solution, (c, a): &(f64, Vec<f64>), j: usize) {
     let snap = |x: f64| Frac::near(x).map_or(x, |f| f.value());
     let aj = a[j];
     for e in &mut sol.exprs {

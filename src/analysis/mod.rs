@@ -11,7 +11,8 @@
 //! changes that change no part, and `project` reads the
 //! variations on the kept relations; `details` keeps the literals an author left beside named variables as typed (without
 //! variations); `names` and `ranges` make the sliders, keeping the `contacts` the variations keep
-//! (`contact_vars` makes a contact a slider of its own where a box of ranges cannot keep it). `similarity` is
+//! (`contact_vars` makes a contact a slider of its own where a box of ranges cannot keep it,
+//! `size_basis` exchanges free slots so the box can hold the presets with every size positive). `similarity` is
 //! the model's IoU between two settings (exact volumes, from `geom`); `linalg`, `rowbasis`,
 //! `slotblocks`, `chosen` and `pool` are the shared machinery. Floats are compared only against
 //! `crate::tolerance`.
@@ -42,6 +43,7 @@ pub mod ranges;
 pub mod reparam;
 pub mod rowbasis;
 pub mod similarity;
+pub mod size_basis;
 pub mod slotblocks;
 
 pub use candidates::{Candidate, Candidates, RelationKind, find_candidates, find_candidates_for};

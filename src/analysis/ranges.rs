@@ -51,6 +51,19 @@ pub fn size_forms(model: &Model) -> Vec<Affine> {
     out
 }
 
+/// Every size of the model less its floor ([`SIZE_FLOOR`] of its input value): the forms a
+/// preset keeps `≥ 0`, as every setting of the sliders does.
+pub fn size_floors(model: &Model) -> Vec<Affine> {
+    let values = model.slot_values();
+    size_forms(model)
+        .into_iter()
+        .map(|f| {
+            let floor = SIZE_FLOOR * f.eval(&values);
+            f.add(&Affine::constant(-floor))
+        })
+        .collect()
+}
+
 /// A size in terms of the free variables: `(constant, coefficient per free variable)`.
 pub(crate) fn in_free(form: &Affine, sol: &Solution) -> (f64, Vec<f64>) {
     let mut c = form.constant;
@@ -105,6 +118,9 @@ pub fn reach(position: bool, value: f64, size: f64) -> f64 {
     }
 }
 
+/// Every size stays above this share of its input value at every setting of the sliders.
+pub(crate) const SIZE_FLOOR: f64 = 0.02;
+
 /// Passes over the bounds before the box is taken as settled (each pass meets every bound
 /// broken at its start; later bounds can break earlier ones again only by round-off).
 const MAX_SHRINK_PASSES: usize = 200;
@@ -148,7 +164,7 @@ pub fn ranges(
         .iter()
         .map(|f| {
             let (c, a) = in_free(f, sol);
-            let min = 0.02 * at_free(c, &a, input);
+            let min = SIZE_FLOOR * at_free(c, &a, input);
             Bound { c, a, min }
         })
         .filter(Bound::moves)
@@ -260,7 +276,12 @@ pub(crate) fn min_over_box(c: f64, a: &[f64], side: impl Fn(usize) -> (f64, f64)
 }
 
 /// The box of the input and the variations, inside the box `[lo, hi]`.
-fn hull(input: &[f64], variations: &[Vec<f64>], lo: &[f64], hi: &[f64]) -> (Vec<f64>, Vec<f64>) {
+pub(crate) fn hull(
+    input: &[f64],
+    variations: &[Vec<f64>],
+    lo: &[f64],
+    hi: &[f64],
+) -> (Vec<f64>, Vec<f64>) {
     let mut a = input.to_vec();
     let mut b = input.to_vec();
     for v in variations {

@@ -141,6 +141,15 @@ impl Solution {
     }
 }
 
+/// Each slot's place in [`column_order`]: the higher, the more it is wanted free.
+pub(crate) fn wanted_rank(model: &Model) -> Vec<usize> {
+    let mut rank = vec![0; model.slots.len()];
+    for (k, s) in column_order(model).into_iter().enumerate() {
+        rank[s] = k;
+    }
+    rank
+}
+
 /// Column order: least wanted as a free variable first.
 fn column_order(model: &Model) -> Vec<usize> {
     let mut volume = vec![0.0f64; model.slots.len()];

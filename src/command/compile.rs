@@ -8,7 +8,7 @@
 //! file only composes them, and every decision is recorded in the [`Report`].
 
 use super::pictures::{Progress, pictures};
-use crate::analysis::anchors::{Anchors, project_variations_keeping};
+use crate::analysis::anchors::{Anchors, Keeping, project_variations_keeping};
 use crate::analysis::candidates::{Candidate, Candidates};
 use crate::analysis::classes::sigmoid;
 use crate::analysis::contact_vars::{fix_pinned, keep_contacts};
@@ -23,9 +23,10 @@ use crate::analysis::optional::{held_where_skipped, optional_parts, toggles};
 use crate::analysis::precision::Precision;
 use crate::analysis::prior::structural_prior;
 use crate::analysis::project::Faces;
-use crate::analysis::ranges::{Range, close_contacts, ranges};
+use crate::analysis::ranges::{Range, close_contacts, ranges, size_floors};
 use crate::analysis::reparam::{Solution, solve};
 use crate::analysis::similarity::VolumeSimilarity;
+use crate::analysis::size_basis::exchange_for_sizes;
 use crate::back::diff::unified_diff;
 use crate::back::emit::{EmitPlan, emit};
 use crate::back::gallery::Gallery;
@@ -230,8 +231,14 @@ pub fn reparameterize_telling(
         }
         None => common_contacts(model, &raw, &unshown, &mut Slack(eps)),
     };
+    let floors = size_floors(model);
+    let keeping = Keeping {
+        contacts: &contacts,
+        floors: &floors,
+        tolerance: eps,
+    };
     let projected =
-        project_variations_keeping(&anchors, &faces, &rows, &values, &optional, &contacts, eps);
+        project_variations_keeping(&anchors, &faces, &rows, &values, &optional, &keeping);
     // Emit: sliders, blends and switches, the file and its presets.
     let (input_free, variation_free, slider_ranges) = slider_box(
         model,
@@ -262,6 +269,7 @@ pub fn reparameterize_telling(
         variations,
         candidates: &candidates,
         sim: options.measure.then_some(&sim),
+        anchors: &anchors,
         optional: &optional,
         solution: &solution,
         projected: &projected,
@@ -307,8 +315,9 @@ fn samples_of(
 
 /// The sliders' box: the free variables at the input and at each projected variation (the
 /// presets), and their ranges. Contact sides the box cannot keep become free variables of
-/// their own where that parts fewer of them, variables the contacts pin are fixed, and the
-/// box is closed on the contacts, a preset giving up at most what the noise explains
+/// their own where that parts fewer of them, variables the contacts pin are fixed, free
+/// slots are exchanged for dependent ones where that lets the box hold the presets with
+/// every size positive (`size_basis`), and the box is closed on the contacts, a preset giving up at most what the noise explains
 /// (nothing for exact variations). Presets are then clamped into the ranges: every size
 /// positive and every kept contact closed there too.
 fn slider_box(
@@ -325,8 +334,11 @@ fn slider_box(
         (input_free, variation_free, r)
     };
     let boxed = keep_contacts(model, solution, contacts, eps, &mut box_of);
-    let (input_free, mut variation_free, mut slider_ranges) =
-        fix_pinned(solution, eps, boxed, &mut box_of);
+    let mut boxed = fix_pinned(solution, eps, boxed, &mut box_of);
+    if exchange_for_sizes(model, solution, projected) {
+        boxed = fix_pinned(solution, eps, box_of(solution), &mut box_of);
+    }
+    let (input_free, mut variation_free, mut slider_ranges) = boxed;
     let allowance = noise.map_or(0.0, |n| n.critical_z * n.sigma);
     close_contacts(
         solution,
@@ -457,6 +469,8 @@ struct Outcome<'a> {
     candidates: &'a Candidates,
     /// The similarity to measure the projections' IoUs with (`None`: not measured).
     sim: Option<&'a VolumeSimilarity<'a>>,
+    /// Where the model is pinned: the projections stand where the input stands.
+    anchors: &'a Anchors,
     optional: &'a [Vec<usize>],
     solution: &'a Solution,
     projected: &'a [Vec<f64>],
@@ -498,7 +512,10 @@ fn report(o: &Outcome, choice: Choice) -> Report {
         .map(|((v, p), skip)| VariationReport {
             name: v.name.clone(),
             optional_parts: skip.iter().map(|&i| model.parts[i].name.clone()).collect(),
-            projection_iou: o.sim.map(|sim| sim.similarity(p, &v.values, skip)),
+            // Both in the input's frame: the projection was moved there.
+            projection_iou: o
+                .sim
+                .map(|sim| sim.similarity(p, &o.anchors.moved_to_input(&v.values), skip)),
         })
         .collect();
     let part_names = |parts: &[usize]| parts.iter().map(|&p| model.parts[p].name.clone()).collect();
