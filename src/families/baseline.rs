@@ -61,6 +61,7 @@ pub fn paper_method(model: &Model, raw: &[Vec<f64>]) -> Output {
             .map(|t| t.parts)
             .collect(),
         presets: variation_free.into_iter().map(Some).collect(),
+        projected,
         seconds: start.elapsed().as_secs_f64(),
         sigma: None,
     }

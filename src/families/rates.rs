@@ -1,7 +1,7 @@
 //! The benchmark's table: rates over families for one method and one condition.
 
 use super::run::FamilyResult;
-use super::score::Score;
+use super::score::{PRESET_HELD_SHARE, Score};
 
 /// One row's rates (percentages of the families where they apply).
 #[derive(Debug, Clone, Default)]
@@ -17,6 +17,9 @@ pub struct Rates {
     pub optional_found: f64,
     pub optional_families: usize,
     pub presets_valid: f64,
+    /// Families whose presets the box holds where they were projected
+    /// ([`super::score::PRESET_HELD_SHARE`]).
+    pub presets_held: f64,
     pub mean_sliders: f64,
     pub mean_d: f64,
     pub seconds: f64,
@@ -63,6 +66,7 @@ pub fn rates(results: &[FamilyResult], pick: impl Fn(&FamilyResult) -> &Score) -
         optional_found: percent(found, with_optional.len()),
         optional_families: with_optional.len(),
         presets_valid: percent(count(&|r| pick(r).bad_preset.is_none()), n),
+        presets_held: percent(count(&|r| pick(r).preset_moved <= PRESET_HELD_SHARE), n),
         mean_sliders: mean(&|r| pick(r).dimension as f64),
         mean_d: mean(&|r| pick(r).d as f64),
         seconds: mean(&|r| pick(r).seconds),
@@ -71,15 +75,15 @@ pub fn rates(results: &[FamilyResult], pick: impl Fn(&FamilyResult) -> &Score) -
 
 /// The table's header.
 pub fn header() -> String {
-    "| condition | method | families | reach | coherence | dim ≤ d+1 | dim ≤ paper+1 | no false toggle | optional found (n) | presets valid | sliders / d | s per family |\n\
-     |---|---|---|---|---|---|---|---|---|---|---|---|\n"
+    "| condition | method | families | reach | coherence | dim ≤ d+1 | dim ≤ paper+1 | no false toggle | optional found (n) | presets valid | presets held | sliders / d | s per family |\n\
+     |---|---|---|---|---|---|---|---|---|---|---|---|---|\n"
         .to_string()
 }
 
 /// One row of the table.
 pub fn row(condition: &str, method: &str, r: &Rates) -> String {
     format!(
-        "| {condition} | {method} | {} | {:.1}% | {:.1}% | {:.1}% | {} | {:.1}% | {:.1}% ({}) | {:.1}% | {:.2} / {:.2} | {:.3} |\n",
+        "| {condition} | {method} | {} | {:.1}% | {:.1}% | {:.1}% | {} | {:.1}% | {:.1}% ({}) | {:.1}% | {:.1}% | {:.2} / {:.2} | {:.3} |\n",
         r.families,
         r.reach,
         r.coherence,
@@ -90,6 +94,7 @@ pub fn row(condition: &str, method: &str, r: &Rates) -> String {
         r.optional_found,
         r.optional_families,
         r.presets_valid,
+        r.presets_held,
         r.mean_sliders,
         r.mean_d,
         r.seconds

@@ -250,6 +250,7 @@ pub fn output_of(model: &Model, compiled: &Compiled, seconds: f64) -> Output {
         ranges: report.free_variables.iter().map(|f| f.range).collect(),
         toggles,
         presets,
+        projected: compiled.projected.clone(),
         seconds,
         sigma: report.noise.map(|n| n.sigma),
     }

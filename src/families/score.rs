@@ -38,6 +38,9 @@ pub struct Output {
     pub toggles: Vec<Vec<usize>>,
     /// Each preset's free values, in slider order (`None`: it does not name every slider).
     pub presets: Vec<Option<Vec<f64>>>,
+    /// Each training variation projected onto the kept relations (slot values): what its
+    /// preset is before the sliders' box holds it.
+    pub projected: Vec<Vec<f64>>,
     pub seconds: f64,
     /// The noise the method estimated (world units), if it estimates one.
     pub sigma: Option<f64>,
@@ -72,6 +75,9 @@ pub struct Score {
     pub missed_optional: Option<Vec<usize>>,
     /// Why the presets are not valid, if they are not.
     pub bad_preset: Option<String>,
+    /// How far the box moved a preset off its projection: the largest change of a number,
+    /// as a share of the model's size ([`preset_moved`]).
+    pub preset_moved: f64,
     pub seconds: f64,
     /// The noise the method estimated (world units), if it estimates one.
     pub sigma: Option<f64>,
@@ -167,6 +173,7 @@ pub fn score(truth: &Truth, out: &Output, seed: u64) -> Score {
                 .collect()
         }),
         bad_preset: bad_preset(model, out),
+        preset_moved: preset_moved(model, out),
         seconds: out.seconds,
         sigma: out.sigma,
         ..coherence(truth, out, seed)
@@ -248,6 +255,22 @@ fn breaks(
 
 /// Why the presets are invalid: a slider missing, a value outside its range, a size not
 /// positive there.
+/// A preset counts as held by the box when no number of it moved off its projection by
+/// more than this share of the model's size.
+pub const PRESET_HELD_SHARE: f64 = 0.01;
+
+/// The largest change of a number between a preset and its variation's projection, as a
+/// share of the model's size (0 when there is no projection to compare with).
+fn preset_moved(model: &Model, out: &Output) -> f64 {
+    let size = model.size();
+    out.presets
+        .iter()
+        .zip(&out.projected)
+        .filter_map(|(p, q)| Some((out.solution.slot_values(p.as_ref()?), q)))
+        .flat_map(|(x, q)| x.into_iter().zip(q).map(|(a, b)| (a - b).abs() / size))
+        .fold(0.0, f64::max)
+}
+
 fn bad_preset(model: &Model, out: &Output) -> Option<String> {
     let sizes = size_forms(model);
     for (k, p) in out.presets.iter().enumerate() {
