@@ -26,7 +26,7 @@
 //! more than the model's tolerance, so it ends.
 
 use super::contact_vars::substitute;
-use super::ranges::{SIZE_FLOOR, at_free, in_free, min_over_box, size_forms};
+use super::ranges::{hull, in_free, min_over_box, size_floors};
 use super::reparam::{Solution, wanted_rank};
 use crate::ir::{Affine, Model, SlotId};
 use crate::tolerance::{COEFFICIENT_ZERO, Tolerance};
@@ -36,7 +36,7 @@ use crate::tolerance::{COEFFICIENT_ZERO, Tolerance};
 /// exchanged any.
 pub fn exchange_for_sizes(model: &Model, sol: &mut Solution, projected: &[Vec<f64>]) -> bool {
     let mut exchanged = false;
-    let sizes = size_forms(model);
+    let sizes = size_floors(model);
     let points: Vec<Vec<f64>> = std::iter::once(model.slot_values())
         .chain(projected.iter().cloned())
         .collect();
@@ -70,22 +70,22 @@ pub fn exchange_for_sizes(model: &Model, sol: &mut Solution, projected: &[Vec<f6
 }
 
 /// Per size, how far its least value over the box of `points` (slot values; the input
-/// first) in `sol`'s free variables falls below its floor (0 where it does not).
-fn shortfall(sol: &Solution, sizes: &[Affine], points: &[Vec<f64>]) -> Vec<f64> {
+/// first) in `sol`'s free variables falls below its floor (`floors`: each size less its
+/// floor, `ranges::size_floors`; 0 where it does not).
+fn shortfall(sol: &Solution, floors: &[Affine], points: &[Vec<f64>]) -> Vec<f64> {
     let free: Vec<Vec<f64>> = points.iter().map(|x| sol.free_values(x)).collect();
     let n = sol.free.len();
-    let lo: Vec<f64> = (0..n)
-        .map(|i| free.iter().map(|v| v[i]).fold(f64::INFINITY, f64::min))
-        .collect();
-    let hi: Vec<f64> = (0..n)
-        .map(|i| free.iter().map(|v| v[i]).fold(f64::NEG_INFINITY, f64::max))
-        .collect();
-    sizes
+    let (lo, hi) = hull(
+        &free[0],
+        &free[1..],
+        &vec![f64::NEG_INFINITY; n],
+        &vec![f64::INFINITY; n],
+    );
+    floors
         .iter()
         .map(|f| {
             let (c, a) = in_free(f, sol);
-            let floor = SIZE_FLOOR * at_free(c, &a, &free[0]);
-            (floor - min_over_box(c, &a, |i| (lo[i], hi[i]))).max(0.0)
+            (-min_over_box(c, &a, |i| (lo[i], hi[i]))).max(0.0)
         })
         .collect()
 }
@@ -177,7 +177,7 @@ mod tests {
         free[panel] -= 40.0;
         let narrow = sol.slot_values(&free);
         let points = [input.clone(), narrow.clone()];
-        let sizes = size_forms(&model);
+        let sizes = size_floors(&model);
         let before: f64 = shortfall(&sol, &sizes, &points).iter().sum();
         assert!(
             before > 0.0,

@@ -253,8 +253,6 @@ fn breaks(
         .map(|s| format!("a size goes to {:.3}", s.eval(x)))
 }
 
-/// Why the presets are invalid: a slider missing, a value outside its range, a size not
-/// positive there.
 /// A preset counts as held by the box when no number of it moved off its projection by
 /// more than this share of the model's size.
 pub const PRESET_HELD_SHARE: f64 = 0.01;
@@ -271,6 +269,8 @@ fn preset_moved(model: &Model, out: &Output) -> f64 {
         .fold(0.0, f64::max)
 }
 
+/// Why the presets are invalid: a slider missing, a value outside its range, a size not
+/// positive there.
 fn bad_preset(model: &Model, out: &Output) -> Option<String> {
     let sizes = size_forms(model);
     for (k, p) in out.presets.iter().enumerate() {
