@@ -1,11 +1,14 @@
 //! Moves after the gradient rounds, kept when the loss drops: single faces of single parts,
-//! and the faces of several parts that share a plane in the model as written (a contact, a
-//! flush), moved by fractions of the parts' extent ([`polish`]); and single slots and faces
-//! moved by a pixel or less on hard edges ([`refine`]).
+//! the faces of several parts that share a plane in the model as written (a contact, a
+//! flush), moved by fractions of the parts' extent, and whole parts moved along their
+//! thinnest axis by multiples of it or onto a sibling ([`polish`]); and single slots and
+//! faces moved by a pixel or less on hard edges ([`refine`]).
 //!
-//! Invariants: a face move changes only the chosen face among its part's faces, and a
-//! plane move only the plane's faces among its parts' faces (the smallest change of slots
-//! that does so, round-off removed); the result is never worse than the start.
+//! Invariants: a face move changes only the chosen face among its part's faces, a plane
+//! move only the plane's faces among its parts' faces, and a part move only its faces
+//! along the axis, each by the same shift; of the changes of slots that do so, the one that
+//! moves the other parts' faces least ([`keeping_others`]), round-off removed. The result
+//! is never worse than the start.
 
 use super::Parametric;
 use crate::analysis::linalg;
@@ -22,9 +25,11 @@ const FACE_MOVES: [f64; 10] = [-0.95, -0.5, -0.25, -0.1, -0.03, 0.03, 0.1, 0.25,
 /// of the part's extent outwards and 3% to 95% inwards; keep the best move when the loss
 /// drops. Gradients only see edges that are visible; this reaches faces hidden behind other
 /// parts (a shelf grown up into a table top), sizes the loss barely sees, and parts the
-/// target does not have (a chair's arms squashed flat for a stool). Each pass then moves
-/// every plane group together ([`plane_groups`]): a board thinned with the boards it holds.
-/// `sweeps` passes, or until nothing improves.
+/// target does not have (a chair's arms squashed flat for a stool). Each pass first moves
+/// every part whole along its thinnest axis ([`sweep_parts`]): a shelf onto the picture's
+/// shelf a few of its thicknesses away; and last every plane group together
+/// ([`plane_groups`]): a board thinned with the boards it holds. `sweeps` passes, or until
+/// nothing improves.
 pub fn polish(
     problem: &Parametric,
     mut x: Vec<f64>,
@@ -39,9 +44,12 @@ pub fn polish(
     let solves = part_solves(problem);
     let groups = plane_moves(problem);
     for _ in 0..sweeps {
+        // Whole parts first: a face move would squash a part the picture shows elsewhere
+        // (its wrong pixels gone), and a squashed part's moves are too short to get there.
+        let parts = sweep_parts(problem, &solves, &mut x, &mut best, loss, ok);
         let faces = sweep_faces(problem, &solves, &mut x, &mut best, &shifts, loss, ok);
         let planes = sweep_planes(problem, &groups, &mut x, &mut best, loss, ok);
-        if !faces && !planes {
+        if !faces && !planes && !parts {
             break;
         }
     }
@@ -88,13 +96,13 @@ pub fn plane_groups(problem: &Parametric) -> Vec<Vec<(usize, usize)>> {
 }
 
 /// A plane group ([`plane_groups`]) prepared for moving: its parts, the rows of all their
-/// faces over the slots with the pseudo-inverse, and a 0/1 mask of the plane's faces among
+/// faces over the slots with their solve ([`keeping_others`]), and a 0/1 mask of the plane's faces among
 /// those rows. It depends on the model, not on the point, so it is worked out once per pass.
 struct PlaneMove {
     axis: u8,
     parts: Vec<usize>,
     a: DMatrix<f64>,
-    pinv: DMatrix<f64>,
+    solve: DMatrix<f64>,
     on_plane: DVector<f64>,
 }
 
@@ -119,7 +127,7 @@ fn plane_moves(problem: &Parametric) -> Vec<PlaneMove> {
                 .collect();
             let forms: Vec<&Affine> = rows.iter().map(|r| r.2).collect();
             let a = linalg::matrix(&forms, d);
-            let pinv = linalg::pinv(&a);
+            let solve = keeping_others(problem, &a, &parts);
             // 1 on the rows of the plane's faces, 0 on their parts' other faces.
             let on_plane = DVector::from_iterator(
                 rows.len(),
@@ -130,7 +138,7 @@ fn plane_moves(problem: &Parametric) -> Vec<PlaneMove> {
                 axis,
                 parts,
                 a,
-                pinv,
+                solve,
                 on_plane,
             }
         })
@@ -166,7 +174,7 @@ fn sweep_planes(
             .flat_map(|f| [f * thinnest, -f * thinnest])
             .filter_map(|shift| {
                 let b = &plane.on_plane * shift;
-                let dx = without_round_off(&plane.pinv * &b, shift);
+                let dx = without_round_off(&plane.solve * &b, shift);
                 // Every face of the parts must move as asked (no slot moves a member
                 // without another face of its part, or a shared slot ties them otherwise).
                 let off = (&plane.a * &dx - &b).amax();
@@ -197,32 +205,50 @@ fn without_round_off(mut dx: DVector<f64>, shift: f64) -> DVector<f64> {
 
 /// Part `p`'s extent along `axis` at `x` (its faces' spread).
 fn extent_along(problem: &Parametric, p: usize, axis: u8, x: &[f64]) -> f64 {
-    let along: Vec<f64> = problem.faces[p]
-        .iter()
-        .filter(|f| f.0 == axis)
-        .map(|f| f.2.eval(x))
-        .collect();
-    along.iter().fold(f64::NEG_INFINITY, |m, v| m.max(*v))
-        - along.iter().fold(f64::INFINITY, |m, v| m.min(*v))
+    let (low, high) = spans(problem, p, x)[usize::from(axis)];
+    high - low
 }
 
-/// Per part, the pseudo-inverse of its faces' rows over the slots (`None` for a part with
-/// fewer than two faces or none that a slot moves): a face move's smallest change of
-/// slots. It depends on the model, not on the point, so it is worked out once per pass.
+/// Per part, the smallest change of slots that moves its faces as asked (`None` for a part
+/// with fewer than two faces or none that a slot moves), a `slots × faces` matrix
+/// ([`keeping_others`]): a face move's change of slots. It depends on the model, not on the
+/// point, so it is worked out once per pass.
 fn part_solves(problem: &Parametric) -> Vec<Option<DMatrix<f64>>> {
     let d = problem.x0.len();
-    problem
-        .faces
-        .iter()
-        .map(|faces| {
+    (0..problem.faces.len())
+        .map(|p| {
+            let faces = &problem.faces[p];
             if faces.len() < 2 {
                 return None;
             }
             let rows: Vec<&Affine> = faces.iter().map(|f| &f.2).collect();
             let a = linalg::matrix(&rows, d);
-            (!a.iter().all(|v| *v == 0.0)).then(|| linalg::pinv(&a))
+            (!a.iter().all(|v| *v == 0.0)).then(|| keeping_others(problem, &a, &[p]))
         })
         .collect()
+}
+
+/// The change of slots `M b` that moves the faces whose rows are `own` (of the parts
+/// `parts`) by `b`, and among those, moves every other part's faces least (least squares
+/// over their rows; exactly not at all where no slot ties them to the moved faces), and is
+/// smallest among the rest. The smallest change of slots alone would share a move between
+/// a part's own translation and a wrapper's that carries the whole model (a `.csg`
+/// `multmatrix` around a group), and so move every part of the group by half of it.
+fn keeping_others(problem: &Parametric, own: &DMatrix<f64>, parts: &[usize]) -> DMatrix<f64> {
+    let d = problem.x0.len();
+    let own_pinv = linalg::pinv(own);
+    let rows: Vec<&Affine> = (0..problem.faces.len())
+        .filter(|q| !parts.contains(q))
+        .flat_map(|q| problem.faces[q].iter().map(|f| &f.2))
+        .collect();
+    if rows.is_empty() {
+        return own_pinv;
+    }
+    let others = linalg::matrix(&rows, d);
+    // Changes of slots that leave the own faces where they are: the null space of `own`.
+    let free = DMatrix::identity(d, d) - &own_pinv * own;
+    let through = &others * &free;
+    &own_pinv - linalg::pinv(&through) * (&others * &own_pinv)
 }
 
 /// One pass over every face of every part: the shifts `shifts(extent, outwards)` of that
@@ -238,8 +264,8 @@ fn sweep_faces(
     ok: &dyn Fn(&[f64]) -> bool,
 ) -> bool {
     let mut improved = false;
-    for (p, (faces, pinv)) in problem.faces.iter().zip(solves).enumerate() {
-        let Some(pinv) = pinv else { continue };
+    for (p, (faces, solve)) in problem.faces.iter().zip(solves).enumerate() {
+        let Some(solve) = solve else { continue };
         for (j, &(axis, high, ref form)) in faces.iter().enumerate() {
             let extent = extent_along(problem, p, axis, x);
             if extent.is_nan() || extent <= 0.0 || form.is_constant() {
@@ -252,7 +278,7 @@ fn sweep_faces(
                 .filter_map(|shift| {
                     let mut b = DVector::zeros(faces.len());
                     b[j] = shift;
-                    let dx = without_round_off(pinv * b, shift);
+                    let dx = without_round_off(solve * b, shift);
                     let cand: Vec<f64> = x.iter().zip(dx.iter()).map(|(a, b)| a + b).collect();
                     // The move must actually move that face.
                     let moved = (form.eval(&cand) - form.eval(x) - shift).abs()
@@ -268,6 +294,110 @@ fn sweep_faces(
         }
     }
     improved
+}
+
+/// Moves of a whole part tried by [`sweep_parts`], as multiples of its extent along the axis
+/// it is moved along, each both ways.
+const PART_MOVES: [f64; 8] = [0.5, 1.0, 1.5, 2.0, 3.0, 4.0, 6.0, 8.0];
+
+/// One pass over the parts: each is moved whole along its thinnest axis (every face of it
+/// along that axis by the same shift, the smallest change of slots that does so and keeps
+/// its other faces) by [`PART_MOVES`] of its extent there and onto each of its siblings
+/// ([`sibling_shifts`]), and the best move is kept when the loss drops below `best`. A part misplaced by more than its own thickness covers none
+/// of the picture's pixels of it, so no gradient and no face move (at most one extent
+/// outwards, which opens the part's far side) reaches them: a shelf two or three of its
+/// thicknesses above the picture's shelf, or stacked onto another shelf where the picture
+/// has one shelf fewer. Whether any move was kept.
+fn sweep_parts(
+    problem: &Parametric,
+    solves: &[Option<DMatrix<f64>>],
+    x: &mut Vec<f64>,
+    best: &mut f64,
+    loss: &mut dyn FnMut(&[f64]) -> f64,
+    ok: &dyn Fn(&[f64]) -> bool,
+) -> bool {
+    let mut improved = false;
+    for (p, (faces, solve)) in problem.faces.iter().zip(solves).enumerate() {
+        let Some(solve) = solve else { continue };
+        let Some((axis, extent)) = thinnest_axis(problem, p, x) else {
+            continue;
+        };
+        let along: Vec<f64> = faces
+            .iter()
+            .map(|f| f64::from(u8::from(f.0 == axis)))
+            .collect();
+        let siblings = sibling_shifts(problem, p, axis, x);
+        let moves: Vec<Vec<f64>> = PART_MOVES
+            .iter()
+            .flat_map(|f| [f * extent, -f * extent])
+            .chain(siblings)
+            .filter_map(|shift| {
+                let b = DVector::from_iterator(faces.len(), along.iter().map(|a| a * shift));
+                let dx = without_round_off(solve * &b, shift);
+                let cand: Vec<f64> = x.iter().zip(dx.iter()).map(|(a, d)| a + d).collect();
+                // Every face of the part must move as asked.
+                let moved = faces.iter().zip(b.iter()).all(|(f, want)| {
+                    (f.2.eval(&cand) - f.2.eval(x) - want).abs() <= RELATIVE_EPSILON * extent
+                });
+                moved.then_some(cand)
+            })
+            .collect();
+        if let Some((l, cand)) = super::best_improvement(moves, *best, loss, ok) {
+            *best = l;
+            *x = cand;
+            improved = true;
+        }
+    }
+    improved
+}
+
+/// Shifts along `axis` that put part `p` where a sibling of it is: another part about as
+/// thick along `axis` (within a factor of two) whose span overlaps `p`'s across the other
+/// two axes (one shelf above another), its low face onto the sibling's. A part the picture
+/// lacks (one shelf fewer) then hides inside a sibling, which the gradient cannot do: on
+/// the way every position costs more than where the part stands.
+fn sibling_shifts(problem: &Parametric, p: usize, axis: u8, x: &[f64]) -> Vec<f64> {
+    let own = spans(problem, p, x);
+    let thick = own[usize::from(axis)].1 - own[usize::from(axis)].0;
+    (0..problem.faces.len())
+        .filter(|&q| q != p)
+        .filter_map(|q| {
+            let other = spans(problem, q, x);
+            let t = other[usize::from(axis)].1 - other[usize::from(axis)].0;
+            let alike = t > 0.5 * thick && t < 2.0 * thick;
+            let across = (0..3)
+                .filter(|&a| a != usize::from(axis))
+                .all(|a| own[a].1.min(other[a].1) > own[a].0.max(other[a].0));
+            (alike && across).then(|| other[usize::from(axis)].0 - own[usize::from(axis)].0)
+        })
+        .filter(|shift| shift.abs() > 0.0)
+        .collect()
+}
+
+/// Part `p`'s span `(low, high)` along each axis at `x` (`(∞, −∞)` along an axis it has no
+/// face on).
+fn spans(problem: &Parametric, p: usize, x: &[f64]) -> [(f64, f64); 3] {
+    let mut out = [(f64::INFINITY, f64::NEG_INFINITY); 3];
+    for f in &problem.faces[p] {
+        let v = f.2.eval(x);
+        let s = &mut out[usize::from(f.0)];
+        *s = (s.0.min(v), s.1.max(v));
+    }
+    out
+}
+
+/// Part `p`'s thinnest axis at `x` among those a slot moves a face of, with its extent
+/// there (`None` when no such axis has a positive extent).
+fn thinnest_axis(problem: &Parametric, p: usize, x: &[f64]) -> Option<(u8, f64)> {
+    (0..3u8)
+        .filter(|&a| {
+            problem.faces[p]
+                .iter()
+                .any(|f| f.0 == a && !f.2.is_constant())
+        })
+        .map(|a| (a, extent_along(problem, p, a, x)))
+        .filter(|(_, e)| e.is_finite() && *e > 0.0)
+        .min_by(|a, b| a.1.total_cmp(&b.1))
 }
 
 /// Moves tried by [`refine`], in units of its `step` (about a pixel), each both ways.
@@ -452,5 +582,94 @@ mod tests {
             .map(|i| m.slots[i].name.as_str())
             .collect();
         assert!(moved.iter().all(|n| n.contains("arm")), "moved {moved:?}");
+    }
+
+    /// How far the faces of `parts` across z moved from the model's numbers (squared), the
+    /// shelf tests' stand-in for every other edge a picture shows.
+    fn moved_across_z(p: &Parametric, parts: &[usize], x: &[f64]) -> f64 {
+        parts
+            .iter()
+            .flat_map(|&q| p.faces[q].iter().filter(|f| f.0 != 2))
+            .map(|f| (f.2.eval(x) - f.2.eval(&p.x0)).powi(2))
+            .sum()
+    }
+
+    #[test]
+    fn a_shelf_three_thicknesses_off_is_moved_onto_the_pictures() {
+        // A 3-thick shelf at z 30; the "picture" has it at z 40 and sees, along z, the
+        // length of what the two cover apart (no overlap: no gradient), and every other
+        // face's move.
+        let m = crate::front::test_model("translate([0, 0, 30]) cube([80, 50, 3]);\n");
+        let p = Parametric::new(&m);
+        let along_z = |x: &[f64]| spans(&p, 0, x)[2];
+        let mut loss = |x: &[f64]| -> f64 {
+            let (lo, hi) = along_z(x);
+            let overlap = (hi.min(43.0) - lo.max(40.0)).max(0.0);
+            (hi - lo) + 3.0 - 2.0 * overlap + 1e3 * moved_across_z(&p, &[0], x)
+        };
+        let x = polish(&p, p.x0.clone(), 3, &mut loss, &|x| {
+            let (lo, hi) = along_z(x);
+            hi > lo
+        });
+        let (lo, hi) = along_z(&x);
+        assert!(
+            (lo - 40.0).abs() < 0.3 && (hi - 43.0).abs() < 0.3,
+            "shelf at {lo}..{hi}"
+        );
+    }
+
+    #[test]
+    fn a_part_moved_whole_leaves_the_parts_its_wrapper_carries() {
+        // Two parts in one translated group, as `.csg` writes them: the board's own
+        // translation moves it, not the group's (which would move the block by half).
+        let m = crate::front::test_model(
+            "translate([0, 0, 5]) { cube([10, 10, 10]); translate([20, 0, 0]) cube([10, 10, 3]); }\n",
+        );
+        let p = Parametric::new(&m);
+        let solve = part_solves(&p)[1].clone().expect("the board moves");
+        let b = DVector::from_iterator(
+            p.faces[1].len(),
+            p.faces[1].iter().map(|f| f64::from(u8::from(f.0 == 2))),
+        );
+        let x: Vec<f64> =
+            p.x0.iter()
+                .zip((solve * b).iter())
+                .map(|(a, d)| a + d)
+                .collect();
+        for f in &p.faces[1] {
+            let want = f64::from(u8::from(f.0 == 2));
+            assert!((f.2.eval(&x) - f.2.eval(&p.x0) - want).abs() < 1e-9);
+        }
+        for f in &p.faces[0] {
+            assert!(
+                (f.2.eval(&x) - f.2.eval(&p.x0)).abs() < 1e-9,
+                "the block moved"
+            );
+        }
+    }
+
+    #[test]
+    fn a_shelf_the_picture_lacks_hides_in_its_sibling() {
+        // Two shelves; the "picture" has only the upper one and sees, along z, what the
+        // shelves cover apart from it. Squashing the lower one leaves a sliver; moving it
+        // any few thicknesses costs as much as where it stands.
+        let m = crate::front::test_model(
+            "translate([0, 0, 30]) cube([80, 50, 3]);\ntranslate([0, 0, 90]) cube([80, 50, 3]);\n",
+        );
+        let p = Parametric::new(&m);
+        let span = |x: &[f64], q: usize| spans(&p, q, x)[2];
+        let mut loss = |x: &[f64]| -> f64 {
+            let (a, b) = (span(x, 0), span(x, 1));
+            // Covered length of the union, less twice its overlap with [90, 93], plus 3.
+            let union = (a.1 - a.0) + (b.1 - b.0) - (a.1.min(b.1) - a.0.max(b.0)).max(0.0);
+            let hit = |s: (f64, f64)| (s.1.min(93.0) - s.0.max(90.0)).max(0.0);
+            let both = (a.1.min(b.1).min(93.0) - a.0.max(b.0).max(90.0)).max(0.0);
+            let seen = hit(a) + hit(b) - both;
+            union + 3.0 - 2.0 * seen + 1e3 * moved_across_z(&p, &[0, 1], x)
+        };
+        let x = polish(&p, p.x0.clone(), 2, &mut loss, &|x| {
+            (0..2).all(|q| span(x, q).1 > span(x, q).0)
+        });
+        assert!(loss(&x) < 1e-9, "lower shelf at {:?}", span(&x, 0));
     }
 }
