@@ -7,8 +7,8 @@
 //! Invariants: a face move changes only the chosen face among its part's faces, a plane
 //! move only the plane's faces among its parts' faces, and a part move only its faces
 //! along the axis, each by the same shift; of the changes of slots that do so, the one that
-//! moves the other parts' faces least ([`keeping_others`]), round-off removed. The result
-//! is never worse than the start.
+//! moves the other parts' faces least and the smallest are offered ([`keeping_others`]),
+//! round-off removed. The result is never worse than the start.
 
 use super::Parametric;
 use crate::analysis::linalg;
@@ -96,13 +96,13 @@ pub fn plane_groups(problem: &Parametric) -> Vec<Vec<(usize, usize)>> {
 }
 
 /// A plane group ([`plane_groups`]) prepared for moving: its parts, the rows of all their
-/// faces over the slots with their solve ([`keeping_others`]), and a 0/1 mask of the plane's faces among
-/// those rows. It depends on the model, not on the point, so it is worked out once per pass.
+/// faces over the slots with their changes of slots ([`keeping_others`]), and a 0/1 mask of
+/// the plane's faces among those rows. It depends on the model, not on the point, so it is worked out once per pass.
 struct PlaneMove {
     axis: u8,
     parts: Vec<usize>,
     a: DMatrix<f64>,
-    solve: DMatrix<f64>,
+    solves: Vec<DMatrix<f64>>,
     on_plane: DVector<f64>,
 }
 
@@ -127,7 +127,7 @@ fn plane_moves(problem: &Parametric) -> Vec<PlaneMove> {
                 .collect();
             let forms: Vec<&Affine> = rows.iter().map(|r| r.2).collect();
             let a = linalg::matrix(&forms, d);
-            let solve = keeping_others(problem, &a, &parts);
+            let solves = keeping_others(problem, &a, &parts);
             // 1 on the rows of the plane's faces, 0 on their parts' other faces.
             let on_plane = DVector::from_iterator(
                 rows.len(),
@@ -138,7 +138,7 @@ fn plane_moves(problem: &Parametric) -> Vec<PlaneMove> {
                 axis,
                 parts,
                 a,
-                solve,
+                solves,
                 on_plane,
             }
         })
@@ -172,9 +172,10 @@ fn sweep_planes(
         let moves: Vec<Vec<f64>> = PLANE_MOVES
             .iter()
             .flat_map(|f| [f * thinnest, -f * thinnest])
-            .filter_map(|shift| {
+            .flat_map(|shift| plane.solves.iter().map(move |solve| (shift, solve)))
+            .filter_map(|(shift, solve)| {
                 let b = &plane.on_plane * shift;
-                let dx = without_round_off(&plane.solve * &b, shift);
+                let dx = without_round_off(solve * &b, shift);
                 // Every face of the parts must move as asked (no slot moves a member
                 // without another face of its part, or a shared slot ties them otherwise).
                 let off = (&plane.a * &dx - &b).amax();
@@ -209,32 +210,37 @@ fn extent_along(problem: &Parametric, p: usize, axis: u8, x: &[f64]) -> f64 {
     high - low
 }
 
-/// Per part, the smallest change of slots that moves its faces as asked (`None` for a part
-/// with fewer than two faces or none that a slot moves), a `slots × faces` matrix
-/// ([`keeping_others`]): a face move's change of slots. It depends on the model, not on the
-/// point, so it is worked out once per pass.
-fn part_solves(problem: &Parametric) -> Vec<Option<DMatrix<f64>>> {
+/// Per part, the changes of slots that move its faces as asked (none for a part with fewer
+/// than two faces or none that a slot moves), each a `slots × faces` matrix
+/// ([`keeping_others`]): a face move's changes of slots. They depend on the model, not on
+/// the point, so they are worked out once per pass.
+fn part_solves(problem: &Parametric) -> Vec<Vec<DMatrix<f64>>> {
     let d = problem.x0.len();
     (0..problem.faces.len())
         .map(|p| {
             let faces = &problem.faces[p];
             if faces.len() < 2 {
-                return None;
+                return Vec::new();
             }
             let rows: Vec<&Affine> = faces.iter().map(|f| &f.2).collect();
             let a = linalg::matrix(&rows, d);
-            (!a.iter().all(|v| *v == 0.0)).then(|| keeping_others(problem, &a, &[p]))
+            if a.iter().all(|v| *v == 0.0) {
+                return Vec::new();
+            }
+            keeping_others(problem, &a, &[p])
         })
         .collect()
 }
 
-/// The change of slots `M b` that moves the faces whose rows are `own` (of the parts
-/// `parts`) by `b`, and among those, moves every other part's faces least (least squares
-/// over their rows; exactly not at all where no slot ties them to the moved faces), and is
-/// smallest among the rest. The smallest change of slots alone would share a move between
-/// a part's own translation and a wrapper's that carries the whole model (a `.csg`
-/// `multmatrix` around a group), and so move every part of the group by half of it.
-fn keeping_others(problem: &Parametric, own: &DMatrix<f64>, parts: &[usize]) -> DMatrix<f64> {
+/// The changes of slots `M b` that move the faces whose rows are `own` (of the parts
+/// `parts`) by `b`: first the one that, among those, moves every other part's faces least
+/// (least squares over their rows; not at all where no slot ties them to the moved faces)
+/// and is smallest among the rest; then, where it differs, the smallest change of slots.
+/// The smallest alone shares a move between a part's own translation and a wrapper's that
+/// carries the whole model (a `.csg` `multmatrix` around a group), and so moves every part
+/// of the group by half of it; the first alone leaves the greedy sweep other paths than
+/// before, one of which walked the desk off OpenSCAD's pictures of it (both are offered).
+fn keeping_others(problem: &Parametric, own: &DMatrix<f64>, parts: &[usize]) -> Vec<DMatrix<f64>> {
     let d = problem.x0.len();
     let own_pinv = linalg::pinv(own);
     let rows: Vec<&Affine> = (0..problem.faces.len())
@@ -242,13 +248,19 @@ fn keeping_others(problem: &Parametric, own: &DMatrix<f64>, parts: &[usize]) -> 
         .flat_map(|q| problem.faces[q].iter().map(|f| &f.2))
         .collect();
     if rows.is_empty() {
-        return own_pinv;
+        return vec![own_pinv];
     }
     let others = linalg::matrix(&rows, d);
     // Changes of slots that leave the own faces where they are: the null space of `own`.
     let free = DMatrix::identity(d, d) - &own_pinv * own;
     let through = &others * &free;
-    &own_pinv - linalg::pinv(&through) * (&others * &own_pinv)
+    let keep = &own_pinv - linalg::pinv(&through) * (&others * &own_pinv);
+    let apart = (&keep - &own_pinv).amax() > RELATIVE_EPSILON * own_pinv.amax();
+    if apart {
+        vec![keep, own_pinv]
+    } else {
+        vec![keep]
+    }
 }
 
 /// One pass over every face of every part: the shifts `shifts(extent, outwards)` of that
@@ -256,7 +268,7 @@ fn keeping_others(problem: &Parametric, own: &DMatrix<f64>, parts: &[usize]) -> 
 /// move was kept. `solves` are the parts' [`part_solves`].
 fn sweep_faces(
     problem: &Parametric,
-    solves: &[Option<DMatrix<f64>>],
+    solves: &[Vec<DMatrix<f64>>],
     x: &mut Vec<f64>,
     best: &mut f64,
     shifts: &dyn Fn(f64, f64) -> Vec<f64>,
@@ -264,8 +276,7 @@ fn sweep_faces(
     ok: &dyn Fn(&[f64]) -> bool,
 ) -> bool {
     let mut improved = false;
-    for (p, (faces, solve)) in problem.faces.iter().zip(solves).enumerate() {
-        let Some(solve) = solve else { continue };
+    for (p, (faces, solves)) in problem.faces.iter().zip(solves).enumerate() {
         for (j, &(axis, high, ref form)) in faces.iter().enumerate() {
             let extent = extent_along(problem, p, axis, x);
             if extent.is_nan() || extent <= 0.0 || form.is_constant() {
@@ -275,7 +286,8 @@ fn sweep_faces(
             let out = if high { 1.0 } else { -1.0 };
             let moves: Vec<Vec<f64>> = shifts(extent, out)
                 .into_iter()
-                .filter_map(|shift| {
+                .flat_map(|shift| solves.iter().map(move |solve| (shift, solve)))
+                .filter_map(|(shift, solve)| {
                     let mut b = DVector::zeros(faces.len());
                     b[j] = shift;
                     let dx = without_round_off(solve * b, shift);
@@ -310,15 +322,17 @@ const PART_MOVES: [f64; 8] = [0.5, 1.0, 1.5, 2.0, 3.0, 4.0, 6.0, 8.0];
 /// has one shelf fewer. Whether any move was kept.
 fn sweep_parts(
     problem: &Parametric,
-    solves: &[Option<DMatrix<f64>>],
+    solves: &[Vec<DMatrix<f64>>],
     x: &mut Vec<f64>,
     best: &mut f64,
     loss: &mut dyn FnMut(&[f64]) -> f64,
     ok: &dyn Fn(&[f64]) -> bool,
 ) -> bool {
     let mut improved = false;
-    for (p, (faces, solve)) in problem.faces.iter().zip(solves).enumerate() {
-        let Some(solve) = solve else { continue };
+    for (p, (faces, solves)) in problem.faces.iter().zip(solves).enumerate() {
+        if solves.is_empty() {
+            continue;
+        }
         let Some((axis, extent)) = thinnest_axis(problem, p, x) else {
             continue;
         };
@@ -331,7 +345,8 @@ fn sweep_parts(
             .iter()
             .flat_map(|f| [f * extent, -f * extent])
             .chain(siblings)
-            .filter_map(|shift| {
+            .flat_map(|shift| solves.iter().map(move |solve| (shift, solve)))
+            .filter_map(|(shift, solve)| {
                 let b = DVector::from_iterator(faces.len(), along.iter().map(|a| a * shift));
                 let dx = without_round_off(solve * &b, shift);
                 let cand: Vec<f64> = x.iter().zip(dx.iter()).map(|(a, d)| a + d).collect();
@@ -626,7 +641,7 @@ mod tests {
             "translate([0, 0, 5]) { cube([10, 10, 10]); translate([20, 0, 0]) cube([10, 10, 3]); }\n",
         );
         let p = Parametric::new(&m);
-        let solve = part_solves(&p)[1].clone().expect("the board moves");
+        let solve = part_solves(&p)[1][0].clone();
         let b = DVector::from_iterator(
             p.faces[1].len(),
             p.faces[1].iter().map(|f| f64::from(u8::from(f.0 == 2))),
