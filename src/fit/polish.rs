@@ -97,7 +97,8 @@ pub fn plane_groups(problem: &Parametric) -> Vec<Vec<(usize, usize)>> {
 
 /// A plane group ([`plane_groups`]) prepared for moving: its parts, the rows of all their
 /// faces over the slots with their changes of slots ([`keeping_others`]), and a 0/1 mask of
-/// the plane's faces among those rows. It depends on the model, not on the point, so it is worked out once per pass.
+/// the plane's faces among those rows. It depends on the model, not on the point, so it is
+/// worked out once per pass.
 struct PlaneMove {
     axis: u8,
     parts: Vec<usize>,
@@ -313,9 +314,10 @@ fn sweep_faces(
 const PART_MOVES: [f64; 8] = [0.5, 1.0, 1.5, 2.0, 3.0, 4.0, 6.0, 8.0];
 
 /// One pass over the parts: each is moved whole along its thinnest axis (every face of it
-/// along that axis by the same shift, the smallest change of slots that does so and keeps
-/// its other faces) by [`PART_MOVES`] of its extent there and onto each of its siblings
-/// ([`sibling_shifts`]), and the best move is kept when the loss drops below `best`. A part misplaced by more than its own thickness covers none
+/// along that axis by the same shift, through each of its changes of slots
+/// ([`keeping_others`]) that keeps its other faces) by [`PART_MOVES`] of its extent there
+/// and onto each of its siblings ([`sibling_shifts`]), and the best move is kept when the
+/// loss drops below `best`. A part misplaced by more than its own thickness covers none
 /// of the picture's pixels of it, so no gradient and no face move (at most one extent
 /// outwards, which opens the part's far side) reaches them: a shelf two or three of its
 /// thicknesses above the picture's shelf, or stacked onto another shelf where the picture
