@@ -176,12 +176,11 @@ fn sweep_planes(
             .flat_map(|shift| plane.solves.iter().map(move |solve| (shift, solve)))
             .filter_map(|(shift, solve)| {
                 let b = &plane.on_plane * shift;
-                let dx = without_round_off(solve * &b, shift);
+                let (dx, cand) = step(x, solve, &b, shift);
                 // Every face of the parts must move as asked (no slot moves a member
                 // without another face of its part, or a shared slot ties them otherwise).
                 let off = (&plane.a * &dx - &b).amax();
-                (off <= RELATIVE_EPSILON * thinnest.max(problem.scale))
-                    .then(|| x.iter().zip(dx.iter()).map(|(a, b)| a + b).collect())
+                (off <= RELATIVE_EPSILON * thinnest.max(problem.scale)).then_some(cand)
             })
             .collect();
         if let Some((l, cand)) = super::best_improvement(moves, *best, loss, ok) {
@@ -191,6 +190,14 @@ fn sweep_planes(
         }
     }
     improved
+}
+
+/// The change of slots `solve · b` of a move by `shift` ([`without_round_off`]) and the
+/// point `x` moved by it.
+fn step(x: &[f64], solve: &DMatrix<f64>, b: &DVector<f64>, shift: f64) -> (DVector<f64>, Vec<f64>) {
+    let dx = without_round_off(solve * b, shift);
+    let cand = x.iter().zip(dx.iter()).map(|(a, d)| a + d).collect();
+    (dx, cand)
 }
 
 /// `dx` with the entries round-off left in the pseudo-inverse's solution (under
@@ -291,8 +298,7 @@ fn sweep_faces(
                 .filter_map(|(shift, solve)| {
                     let mut b = DVector::zeros(faces.len());
                     b[j] = shift;
-                    let dx = without_round_off(solve * b, shift);
-                    let cand: Vec<f64> = x.iter().zip(dx.iter()).map(|(a, b)| a + b).collect();
+                    let (_, cand) = step(x, solve, &b, shift);
                     // The move must actually move that face.
                     let moved = (form.eval(&cand) - form.eval(x) - shift).abs()
                         <= RELATIVE_EPSILON * extent;
@@ -350,8 +356,7 @@ fn sweep_parts(
             .flat_map(|shift| solves.iter().map(move |solve| (shift, solve)))
             .filter_map(|(shift, solve)| {
                 let b = DVector::from_iterator(faces.len(), along.iter().map(|a| a * shift));
-                let dx = without_round_off(solve * &b, shift);
-                let cand: Vec<f64> = x.iter().zip(dx.iter()).map(|(a, d)| a + d).collect();
+                let (_, cand) = step(x, solve, &b, shift);
                 // Every face of the part must move as asked.
                 let moved = faces.iter().zip(b.iter()).all(|(f, want)| {
                     (f.2.eval(&cand) - f.2.eval(x) - want).abs() <= RELATIVE_EPSILON * extent
