@@ -63,7 +63,7 @@ pub struct Args {
     lambda: f64,
     /// Weight of the size prior: each part's size is pulled towards the model's by the
     /// square of its log ratio, so a part the pictures barely show keeps its proportions
-    /// [paper: 0, far: 1e-5].
+    /// [paper: 0, far: 3e-5].
     #[arg(long)]
     size_prior: Option<f64>,
     /// Weight of the tie prior: the model's contacts and repeats hold unless the pictures

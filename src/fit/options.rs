@@ -212,9 +212,13 @@ pub const MIN_LEVEL_SIDE: u32 = 16;
 
 /// The size prior's weight in the default schedule ([`FitOptions::size_prior`]), in units
 /// of the image loss (per view a mean over its pixels): a part ten times its size in the
-/// model costs `5.3e-5`, in a 256-pixel view about what moving a 50-pixel edge of the
-/// silhouette by a tenth of a pixel costs; a doubling costs `4.8e-6`.
-pub const SIZE_PRIOR: f64 = 0.000_01;
+/// model costs `1.6e-4`, in a 256-pixel view about what moving a 50-pixel edge of the
+/// silhouette by a third of a pixel costs; a doubling costs `1.4e-5`. It must outweigh
+/// what OpenSCAD's pictures and the renderer disagree by along a direction the pictures
+/// barely see (a back panel grown into the hollow of its carcass: `1e-5` did not, `7e-5`
+/// over a 19-unit move), and not hold back a size the pictures do show (`1e-4` kept a
+/// carcass's boards thick); chosen on generated families (README, the size prior).
+pub const SIZE_PRIOR: f64 = 0.000_03;
 
 /// The tie prior's weight in the default schedule ([`FitOptions::tie_prior`]), in units of
 /// the image loss: a tie pulled a pixel apart costs `0.69` of it, ten pixels `4.6`; it
