@@ -76,7 +76,7 @@ fn a_scene_rendered_again_where_it_changed_equals_a_whole_render() {
             let cached = cache.render(&scene, &views, sigma, &shades);
             for (v, image) in views.iter().zip(&cached) {
                 let whole = render_soft(&scene, v, sigma, DEFAULT_SHADE, false).0;
-                assert_eq!(&whole, image, "{step:?} at {sigma:?}");
+                assert_eq!(&whole, *image, "{step:?} at {sigma:?}");
                 assert!(whole.m.iter().filter(|&&x| x > 0.5).count() > 50);
             }
         }

@@ -81,10 +81,10 @@ impl AtPoint<'_> {
             .map(|c| prepare_view(&scene, c, Some(BOX_FILTER)))
             .collect();
         backend
-            .render(&scene, &views, Some(BOX_FILTER), &self.shades[..n])
+            .soft(&scene, &views, Some(BOX_FILTER), &self.shades[..n])
             .iter()
             .zip(self.targets)
-            .flat_map(|((soft, _), t)| residuals(soft, t, self.spec))
+            .flat_map(|(soft, t)| residuals(soft, t, self.spec))
             .collect()
     }
 

@@ -73,6 +73,22 @@ pub trait Backend {
         shades: &[[f64; NSHADE]],
     ) -> Vec<(SoftImage, HardImage)>;
 
+    /// The soft channels alone of each view (hard edges when `sigma` is `None`): what a
+    /// loss compares. The default renders whole views; a backend may redraw only what
+    /// changed since its last call, with the same result.
+    fn soft(
+        &mut self,
+        scene: &Scene,
+        views: &[ViewPrep],
+        sigma: Option<f64>,
+        shades: &[[f64; NSHADE]],
+    ) -> Vec<SoftImage> {
+        self.render(scene, views, sigma, shades)
+            .into_iter()
+            .map(|(s, _)| s)
+            .collect()
+    }
+
     /// `f` at every view's soft image (edges of width `sigma`) and, with `grad`, the
     /// gradient of its sum with respect to every part parameter.
     fn evaluate(
@@ -166,6 +182,17 @@ impl Backend for CpuBackend {
             .collect()
     }
 
+    fn soft(
+        &mut self,
+        scene: &Scene,
+        views: &[ViewPrep],
+        sigma: Option<f64>,
+        shades: &[[f64; NSHADE]],
+    ) -> Vec<SoftImage> {
+        let images = self.last.render(scene, views, sigma, shades);
+        images.into_iter().cloned().collect()
+    }
+
     fn evaluate(
         &mut self,
         scene: &Scene,
@@ -185,7 +212,7 @@ impl Backend for CpuBackend {
             .enumerate()
             .map(|(k, (v, &sh))| match &cached {
                 Some(images) => {
-                    view_value(scene, v, k, &images[k], &soft::Entries::default(), f, false)
+                    view_value(scene, v, k, images[k], &soft::Entries::default(), f, false)
                 }
                 None => {
                     let (img, entries) = soft::render_soft(scene, v, Some(sigma), sh, grad);

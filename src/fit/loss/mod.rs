@@ -344,7 +344,7 @@ pub fn sharpen(img: &[f32], width: u32, height: u32, spec: &LossSpec) -> Vec<f32
 /// The rectangle `[x0, y0, x1, y1)` of the non-zero pixels of a `w`×`h` image grown by
 /// `reach` on every side (clipped to the image); `None` when every pixel is zero.
 fn support(img: &[f32], w: usize, h: usize, reach: usize) -> Option<[usize; 4]> {
-    support_where(w, h, reach, |i| img[i] != 0.0)
+    support_where(w, h, reach, &[(img, None)])
 }
 
 /// Separable convolution with zero padding.
@@ -445,8 +445,11 @@ fn sharpened(render: &SoftImage, target: &Target, spec: &LossSpec) -> Sharpened 
     if spec.level == 0 {
         // At full size the differences are taken on their rectangle alone.
         let (w, h) = (w0 as usize, h0 as usize);
-        let differs = |i: usize| render.m[i] != target.m[i] || render.s[i] != target.s[i];
-        let rect = support_where(w, h, reach, differs);
+        let pairs = [
+            (&render.m[..], Some(&target.m[..])),
+            (&render.s[..], Some(&target.s[..])),
+        ];
+        let rect = support_where(w, h, reach, &pairs);
         let (qm, qs) = match rect {
             Some(r) => (
                 compare_rect(&crop_difference(&render.m, &target.m, w, r), r, spec),
@@ -479,7 +482,7 @@ fn sharpened(render: &SoftImage, target: &Target, spec: &LossSpec) -> Sharpened 
         sizes.push((w, h));
     }
     let (wu, hu) = (w as usize, h as usize);
-    let rect = support_where(wu, hu, reach, |i| rm[i] != 0.0 || rs[i] != 0.0);
+    let rect = support_where(wu, hu, reach, &[(&rm, None), (&rs, None)]);
     let (qm, qs) = match rect {
         Some(r) => (
             compare_rect(&crop(&rm, wu, r), r, spec),
@@ -498,25 +501,20 @@ fn sharpened(render: &SoftImage, target: &Target, spec: &LossSpec) -> Sharpened 
     }
 }
 
-/// The rectangle `[x0, y0, x1, y1)` of the pixels of a `w`×`h` image where `nonzero`
-/// holds, grown by `reach` on every side (clipped to the image); `None` when it holds
-/// nowhere.
+/// The rectangle `[x0, y0, x1, y1)` of the pixels of `w`×`h` images where any pair of
+/// `pairs` differs (an image paired with `None` differs from zero), grown by `reach` on every side (clipped to the image); `None` when
+/// every pair is equal.
 fn support_where(
     w: usize,
     h: usize,
     reach: usize,
-    nonzero: impl Fn(usize) -> bool,
+    pairs: &[(&[f32], Option<&[f32]>)],
 ) -> Option<[usize; 4]> {
     let mut rect: Option<[usize; 4]> = None;
     for y in 0..h {
-        let row = y * w;
-        let Some(first) = (0..w).find(|&x| nonzero(row + x)) else {
+        let Some((first, last)) = row_span(pairs, y * w, w) else {
             continue;
         };
-        let last = (first..w)
-            .rev()
-            .find(|&x| nonzero(row + x))
-            .unwrap_or(first);
         let r = rect.get_or_insert([first, y, last + 1, y + 1]);
         r[0] = r[0].min(first);
         r[2] = r[2].max(last + 1);
@@ -530,6 +528,41 @@ fn support_where(
             (y1 + reach).min(h),
         ]
     })
+}
+
+/// Pixels [`row_span`] compares at once: a run this long is compared without an early
+/// exit, which the compiler turns into vector compares (most rows of a fit's difference
+/// are zero, so the scan over them was most of the loss's own time).
+const SPAN_RUN: usize = 32;
+
+/// The first and last `x < w` where a pair of `pairs` differs at `row + x`, or `None`.
+fn row_span(pairs: &[(&[f32], Option<&[f32]>)], row: usize, w: usize) -> Option<(usize, usize)> {
+    let differs = |x0: usize, x1: usize| {
+        pairs.iter().any(|(a, b)| {
+            let a = &a[row + x0..row + x1];
+            match b {
+                Some(b) => {
+                    let b = &b[row + x0..row + x1];
+                    a.iter().zip(b).fold(false, |d, (p, q)| d | (p != q))
+                }
+                None => a.iter().fold(false, |d, p| d | (*p != 0.0)),
+            }
+        })
+    };
+    let runs = (0..w).step_by(SPAN_RUN);
+    let first_run = runs
+        .clone()
+        .find(|&x0| differs(x0, (x0 + SPAN_RUN).min(w)))?;
+    let last_run = runs
+        .rev()
+        .find(|&x0| differs(x0, (x0 + SPAN_RUN).min(w)))
+        .unwrap_or(first_run);
+    let first = (first_run..w).find(|&x| differs(x, x + 1))?;
+    let last = (first..(last_run + SPAN_RUN).min(w))
+        .rev()
+        .find(|&x| differs(x, x + 1))
+        .unwrap_or(first);
+    Some((first, last))
 }
 
 /// `a − b` (images with rows `w` long) inside `rect`, row by row.

@@ -48,50 +48,52 @@ struct Last {
 
 impl SoftCache {
     /// The soft image of each view (no gradient entries), equal to [`render_soft`]'s, each
-    /// rendered only where the scene changed since that view's last render here.
+    /// rendered only where the scene changed since that view's last render here. The
+    /// images are the cache's own, redrawn in place (no copy of a whole image per call).
     pub fn render(
         &mut self,
         scene: &Scene,
         views: &[ViewPrep],
         sigma: Option<f64>,
         shades: &[[f64; NSHADE]],
-    ) -> Vec<SoftImage> {
+    ) -> Vec<&SoftImage> {
         // Views beyond this call's are dropped: the scene kept is this call's.
         self.views.resize(views.len(), None);
         let moved = self
             .scene
             .as_ref()
             .and_then(|last| moved_parts(last, scene));
-        let images = self
-            .views
+        self.views
             .par_iter_mut()
             .zip(views.par_iter().zip(shades.par_iter()))
-            .map(|(last, (prep, &shade))| {
+            .for_each(|(last, (prep, &shade))| {
                 let redraw = match (&moved, last.as_ref()) {
                     (Some(moved), Some(l)) => l.changed(moved, scene, prep, sigma, shade),
                     _ => Redraw::Whole,
                 };
-                let image = match (redraw, last.as_ref()) {
-                    (Redraw::Nothing, Some(l)) => l.image.clone(),
+                match (redraw, last.as_mut()) {
+                    (Redraw::Nothing, Some(l)) => l.rects.clone_from(&prep.rects),
                     (Redraw::Region(region), Some(l)) => {
-                        let mut image = l.image.clone();
-                        render_region(scene, prep, sigma, shade, region, &mut image);
-                        image
+                        render_region(scene, prep, sigma, shade, region, &mut l.image);
+                        l.rects.clone_from(&prep.rects);
                     }
-                    _ => render_soft(scene, prep, sigma, shade, false).0,
-                };
-                *last = Some(Last {
-                    frame: prep.frame,
-                    sigma,
-                    shade,
-                    rects: prep.rects.clone(),
-                    image: image.clone(),
-                });
-                image
-            })
-            .collect();
+                    _ => {
+                        *last = Some(Last {
+                            frame: prep.frame,
+                            sigma,
+                            shade,
+                            rects: prep.rects.clone(),
+                            image: render_soft(scene, prep, sigma, shade, false).0,
+                        });
+                    }
+                }
+            });
         self.scene = Some(scene.clone());
-        images
+        // Every view was just rendered: none is left `None`.
+        self.views
+            .iter()
+            .filter_map(|l| l.as_ref().map(|l| &l.image))
+            .collect()
     }
 }
 
