@@ -1,6 +1,7 @@
 //! The renderer's shortcuts give what a whole render gives, to the bit: `render_soft` (the
-//! soft channels and gradient entries without the hard surface) and `SoftCache` (each
-//! view's last render, drawn again only where parts changed).
+//! soft channels and gradient entries without the hard surface), `SoftCache` (each
+//! view's last render, drawn again only where parts changed) and the CPU backend's
+//! `Backend::soft`, which answers from that cache.
 
 use reparamc::render::camera::default_views;
 use reparamc::render::scene::{BOX_FILTER, DEFAULT_SHADE, PartGeom, Scene};
@@ -79,6 +80,53 @@ fn a_scene_rendered_again_where_it_changed_equals_a_whole_render() {
                 assert_eq!(&whole, *image, "{step:?} at {sigma:?}");
                 assert!(whole.m.iter().filter(|&&x| x > 0.5).count() > 50);
             }
+        }
+    }
+}
+
+#[test]
+fn the_cpu_backends_soft_pictures_are_its_whole_renders() {
+    // `Backend::soft` (the uncertainty's renders) answers from the backend's cache, shared
+    // with its losses: after a loss at another softness and after single moves, each
+    // picture equals the soft half of a whole render.
+    use reparamc::fit::loss::{ImageLoss, LossSpec, Target};
+    use reparamc::render::{Backend, CpuBackend};
+    let m = model(
+        "table.scad",
+        "cube([40, 20, 2]);\n\
+         translate([1, 1, -15]) cube([2, 2, 15]);\n\
+         translate([37, 17, -15]) cube([2, 2, 15]);\n",
+    );
+    let mut scene = Scene::from_parts(&m.parts, &m.csg);
+    let (lo, hi) = scene.bounds().unwrap();
+    let cameras = default_views(lo, hi, 2, 64, 48).unwrap();
+    let shades = vec![DEFAULT_SHADE; cameras.len()];
+    let mut backend = CpuBackend::new();
+    let spec = LossSpec::default();
+    for sigma in [0.5, BOX_FILTER] {
+        for (part, by) in [(0, 0.0), (1, 1.5), (1, -0.7), (2, 2.0)] {
+            let mut theta = scene.parts[part].theta;
+            theta[14] += by;
+            let g = &scene.parts[part];
+            scene.parts[part] = PartGeom::from_theta(g.kind, g.centered, theta);
+            let views: Vec<ViewPrep> = cameras
+                .iter()
+                .map(|c| prepare_view(&scene, c, Some(sigma)))
+                .collect();
+            let soft = backend.soft(&scene, &views, Some(sigma), &shades);
+            let whole = backend.render(&scene, &views, Some(sigma), &shades);
+            for (s, (w, _)) in soft.iter().zip(&whole) {
+                assert_eq!(s, w, "part {part} by {by} at {sigma}");
+                assert!(s.m.iter().filter(|&&v| v > 0.5).count() > 20);
+            }
+            // A loss in between leaves the cache at this scene and softness.
+            let targets: Vec<Target> = whole.iter().map(|(s, _)| Target::from_soft(s)).collect();
+            let f = ImageLoss {
+                targets: &targets,
+                spec: &spec,
+            };
+            let v = backend.evaluate(&scene, &views, sigma, &shades, &f, false);
+            assert!(v.per_view.iter().all(|&l| l == 0.0), "{:?}", v.per_view);
         }
     }
 }
