@@ -15,6 +15,14 @@ fn model(name: &str, text: &str) -> reparamc::ir::Model {
         .model
 }
 
+/// `scene` with part `part`'s parameter `k` moved by `by`.
+fn move_part(scene: &mut Scene, part: usize, k: usize, by: f64) {
+    let g = &scene.parts[part];
+    let mut theta = g.theta;
+    theta[k] += by;
+    scene.parts[part] = PartGeom::from_theta(g.kind, g.centered, theta);
+}
+
 #[test]
 fn the_soft_render_is_the_full_render_without_the_surface() {
     // A box with a bore through it (a split difference) on a cylinder: plain and boolean
@@ -65,10 +73,7 @@ fn a_scene_rendered_again_where_it_changed_equals_a_whole_render() {
     for sigma in [Some(BOX_FILTER), Some(0.5), None] {
         for step in moves {
             for &(part, k, by) in step {
-                let mut theta = scene.parts[part].theta;
-                theta[k] += by;
-                let g = &scene.parts[part];
-                scene.parts[part] = PartGeom::from_theta(g.kind, g.centered, theta);
+                move_part(&mut scene, part, k, by);
             }
             let views: Vec<ViewPrep> = cameras
                 .iter()
@@ -87,8 +92,8 @@ fn a_scene_rendered_again_where_it_changed_equals_a_whole_render() {
 #[test]
 fn the_cpu_backends_soft_pictures_are_its_whole_renders() {
     // `Backend::soft` (the uncertainty's renders) answers from the backend's cache, shared
-    // with its losses: after a loss at another softness and after single moves, each
-    // picture equals the soft half of a whole render.
+    // with its losses: after single moves, with a loss between them, each picture equals
+    // the soft half of a whole render.
     use reparamc::fit::loss::{ImageLoss, LossSpec, Target};
     use reparamc::render::{Backend, CpuBackend};
     let m = model(
@@ -105,10 +110,7 @@ fn the_cpu_backends_soft_pictures_are_its_whole_renders() {
     let spec = LossSpec::default();
     for sigma in [0.5, BOX_FILTER] {
         for (part, by) in [(0, 0.0), (1, 1.5), (1, -0.7), (2, 2.0)] {
-            let mut theta = scene.parts[part].theta;
-            theta[14] += by;
-            let g = &scene.parts[part];
-            scene.parts[part] = PartGeom::from_theta(g.kind, g.centered, theta);
+            move_part(&mut scene, part, 14, by);
             let views: Vec<ViewPrep> = cameras
                 .iter()
                 .map(|c| prepare_view(&scene, c, Some(sigma)))

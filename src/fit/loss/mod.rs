@@ -502,8 +502,8 @@ fn sharpened(render: &SoftImage, target: &Target, spec: &LossSpec) -> Sharpened 
 }
 
 /// The rectangle `[x0, y0, x1, y1)` of the pixels of `w`×`h` images where any pair of
-/// `pairs` differs (an image paired with `None` differs from zero), grown by `reach` on every side (clipped to the image); `None` when
-/// every pair is equal.
+/// `pairs` differs (an image paired with `None` differs from zero), grown by `reach` on
+/// every side (clipped to the image); `None` when every pair is equal.
 fn support_where(
     w: usize,
     h: usize,
