@@ -21,6 +21,7 @@ use super::options::{
     FitOptions, GUARD_SWEEPS, HARD_SIGMA, PROPORTIONS_POOLING, RELATIVE_FLOOR, STEP_HALVINGS,
     SoftEdges,
 };
+use super::part_moves::{Edges, Judge};
 use super::prior::Prior;
 use super::uncertainty::{AtPoint, Information};
 use super::{Parametric, Stage, albedo, frame, polish, proportions, revive, stages};
@@ -732,10 +733,15 @@ impl<'a> Fitter<'a> {
         let problem = &*self.problem;
         let valid = |x: &[f64]| self.valid(x);
         if self.opts.polish > 0 {
-            let at = self.round_compare(0, self.opts.sigma.1);
-            let mut eval =
-                |x: &[f64]| self.loss_at(backend, x, look, &at, false).total() + self.reg(x).0;
-            x = polish(problem, x, self.opts.polish, &mut eval, &valid);
+            let mut judge = FinishJudge {
+                fitter: self,
+                backend: &mut *backend,
+                kept: look.clone(),
+                look: &mut *look,
+                fine: self.round_compare(0, self.opts.sigma.1),
+                coarse: self.round_compare(0, self.opts.sigma.0),
+            };
+            x = polish(problem, x, self.opts.polish, &mut judge, &valid);
             self.offer(backend, best, &x, look);
         }
         if self.opts.refine > 0 {
@@ -751,6 +757,40 @@ impl<'a> Fitter<'a> {
             x = polish::refine(problem, x, pixel, self.opts.refine, &mut eval, &valid);
             self.offer(backend, best, &x, look);
         }
+    }
+}
+
+/// The finishing passes' loss ([`Judge`]): the rounds' comparison at the last round's
+/// softness ([`Edges::Fine`]) or the first's ([`Edges::Coarse`]), plus the regulariser,
+/// in the lighting `look`; `kept` is the lighting the passes last kept a move in.
+struct FinishJudge<'a, 'f> {
+    fitter: &'a Fitter<'f>,
+    backend: &'a mut dyn Backend,
+    look: &'a mut Look,
+    kept: Look,
+    fine: Compare,
+    coarse: Compare,
+}
+
+impl Judge for FinishJudge<'_, '_> {
+    fn loss(&mut self, x: &[f64], edges: Edges) -> f64 {
+        let at = match edges {
+            Edges::Fine => &self.fine,
+            Edges::Coarse => &self.coarse,
+        };
+        let image = self.fitter.loss_at(self.backend, x, self.look, at, false);
+        image.total() + self.fitter.reg(x).0
+    }
+
+    fn light_at(&mut self, x: Option<&[f64]>) {
+        match x {
+            Some(x) => self.fitter.refit_shades(self.backend, x, self.look),
+            None => *self.look = self.kept.clone(),
+        }
+    }
+
+    fn keep_light(&mut self) {
+        self.kept = self.look.clone();
     }
 }
 

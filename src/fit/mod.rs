@@ -9,7 +9,9 @@
 //! geometrically from `sigma.0` to `sigma.1` pixels, so early rounds see far and later
 //! rounds see sharp. With Adam, each stage also runs damped from the same start and the
 //! run with the lower loss goes on ([`FitOptions::damped_rerun`]). Optional finishing
-//! passes, from the best point stood on so far (by the judge's loss), move single faces ([`polish`]) and then single numbers and faces by a pixel or
+//! passes, from the best point stood on so far (by the judge's loss), move whole parts
+//! ([`part_moves`]: a jump onto a sibling judged in the lighting refitted where it lands)
+//! and single faces ([`polish`]) and then single numbers and faces by a pixel or
 //! less on hard edges or area coverage ([`polish::refine`]); pictures may be seen inside a
 //! border of background ([`frame`]). With [`FitOptions::coverage`] the last round, the
 //! refining moves and the judge compare exact area coverage per pixel; pictures are read
@@ -24,7 +26,7 @@
 //! [`loss`] the image loss; [`coverage`] pictures read as coverage; [`optimize`]
 //! the update rules and the spaces they move in; `descent` a stage's run as it goes (its
 //! steps' trust region in pixels); [`stages`], [`proportions`], [`albedo`],
-//! [`polish`], [`frame`] the pieces named above; [`prior`] the regulariser (the paper's
+//! [`polish`], [`part_moves`], [`frame`] the pieces named above; [`prior`] the regulariser (the paper's
 //! pull towards the model's numbers, a size prior, a tie prior); [`targets`] reads target folders; [`uncertainty`] the
 //! numbers' Fisher information at the fit's point; [`memo`] keeps the lighting and the
 //! judge's loss at recent points, so asking again at one does not render again.
@@ -44,6 +46,7 @@ pub mod memo;
 pub mod optimize;
 pub mod options;
 pub mod parametric;
+pub mod part_moves;
 pub mod polish;
 pub mod prior;
 pub mod proportions;

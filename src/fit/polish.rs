@@ -1,16 +1,17 @@
-//! Moves after the gradient rounds, kept when the loss drops: single faces of single parts,
-//! the faces of several parts that share a plane in the model as written (a contact, a
-//! flush), moved by fractions of the parts' extent, and whole parts moved along their
-//! thinnest axis by multiples of it or onto a sibling ([`polish`]); and single slots and
-//! faces moved by a pixel or less on hard edges ([`refine`]).
+//! Moves after the gradient rounds, kept when the loss drops: single faces of single parts
+//! and the faces of several parts that share a plane in the model as written (a contact, a
+//! flush), moved by fractions of the parts' extent, after the moves of whole parts
+//! ([`super::part_moves`]) ([`polish`]); and single slots and faces moved by a pixel or less
+//! on hard edges ([`refine`]).
 //!
-//! Invariants: a face move changes only the chosen face among its part's faces, a plane
-//! move only the plane's faces among its parts' faces, and a part move only its faces
-//! along the axis, each by the same shift; of the changes of slots that do so, the one that
-//! moves the other parts' faces least and the smallest are offered ([`keeping_others`]),
-//! round-off removed. The result is never worse than the start.
+//! Invariants: a face move changes only the chosen face among its part's faces, and a plane
+//! move only the plane's faces among its parts' faces; of the changes of slots that do so,
+//! the one that moves the other parts' faces least and the smallest are offered
+//! ([`keeping_others`]), round-off removed. The result is never worse than the start under
+//! the fine edges ([`Edges::Fine`]).
 
 use super::Parametric;
+use super::part_moves::{Edges, Judge, sweep_parts};
 use crate::analysis::linalg;
 use crate::ir::Affine;
 use crate::tolerance::RELATIVE_EPSILON;
@@ -27,17 +28,18 @@ const FACE_MOVES: [f64; 10] = [-0.95, -0.5, -0.25, -0.1, -0.03, 0.03, 0.1, 0.25,
 /// parts (a shelf grown up into a table top), sizes the loss barely sees, and parts the
 /// target does not have (a chair's arms squashed flat for a stool). Each pass first moves
 /// every part whole along its thinnest axis ([`sweep_parts`]): a shelf onto the picture's
-/// shelf a few of its thicknesses away; and last every plane group together
-/// ([`plane_groups`]): a board thinned with the boards it holds. `sweeps` passes, or until
-/// nothing improves.
+/// shelf many of its thicknesses away; and last every plane group together
+/// ([`plane_groups`]): a board thinned with the boards it holds. `loss` judges a point with
+/// the edges asked for; moves are kept by [`Edges::Fine`] (the whole-part moves also ask
+/// for [`Edges::Coarse`]). `sweeps` passes, or until nothing improves.
 pub fn polish(
     problem: &Parametric,
     mut x: Vec<f64>,
     sweeps: usize,
-    loss: &mut dyn FnMut(&[f64]) -> f64,
+    judge: &mut dyn Judge,
     ok: &dyn Fn(&[f64]) -> bool,
 ) -> Vec<f64> {
-    let mut best = loss(&x);
+    let mut best = judge.loss(&x, Edges::Fine);
     let shifts = |extent: f64, out: f64| -> Vec<f64> {
         FACE_MOVES.iter().map(|frac| out * frac * extent).collect()
     };
@@ -46,9 +48,10 @@ pub fn polish(
     for _ in 0..sweeps {
         // Whole parts first: a face move would squash a part the picture shows elsewhere
         // (its wrong pixels gone), and a squashed part's moves are too short to get there.
-        let parts = sweep_parts(problem, &solves, &mut x, &mut best, loss, ok);
-        let faces = sweep_faces(problem, &solves, &mut x, &mut best, &shifts, loss, ok);
-        let planes = sweep_planes(problem, &groups, &mut x, &mut best, loss, ok);
+        let parts = sweep_parts(problem, &solves, &mut x, &mut best, judge, ok);
+        let mut loss = |x: &[f64]| judge.loss(x, Edges::Fine);
+        let faces = sweep_faces(problem, &solves, &mut x, &mut best, &shifts, &mut loss, ok);
+        let planes = sweep_planes(problem, &groups, &mut x, &mut best, &mut loss, ok);
         if !faces && !planes && !parts {
             break;
         }
@@ -194,7 +197,12 @@ fn sweep_planes(
 
 /// The change of slots `solve · b` of a move by `shift` ([`without_round_off`]) and the
 /// point `x` moved by it.
-fn step(x: &[f64], solve: &DMatrix<f64>, b: &DVector<f64>, shift: f64) -> (DVector<f64>, Vec<f64>) {
+pub(super) fn step(
+    x: &[f64],
+    solve: &DMatrix<f64>,
+    b: &DVector<f64>,
+    shift: f64,
+) -> (DVector<f64>, Vec<f64>) {
     let dx = without_round_off(solve * b, shift);
     let cand = x.iter().zip(dx.iter()).map(|(a, d)| a + d).collect();
     (dx, cand)
@@ -213,16 +221,28 @@ fn without_round_off(mut dx: DVector<f64>, shift: f64) -> DVector<f64> {
 }
 
 /// Part `p`'s extent along `axis` at `x` (its faces' spread).
-fn extent_along(problem: &Parametric, p: usize, axis: u8, x: &[f64]) -> f64 {
+pub(super) fn extent_along(problem: &Parametric, p: usize, axis: u8, x: &[f64]) -> f64 {
     let (low, high) = spans(problem, p, x)[usize::from(axis)];
     high - low
+}
+
+/// Part `p`'s span `(low, high)` along each axis at `x` (`(∞, −∞)` along an axis it has no
+/// face on).
+pub(super) fn spans(problem: &Parametric, p: usize, x: &[f64]) -> [(f64, f64); 3] {
+    let mut out = [(f64::INFINITY, f64::NEG_INFINITY); 3];
+    for f in &problem.faces[p] {
+        let v = f.2.eval(x);
+        let s = &mut out[usize::from(f.0)];
+        *s = (s.0.min(v), s.1.max(v));
+    }
+    out
 }
 
 /// Per part, the changes of slots that move its faces as asked (none for a part with fewer
 /// than two faces or none that a slot moves), each a `slots × faces` matrix
 /// ([`keeping_others`]): a face move's changes of slots. They depend on the model, not on
 /// the point, so they are worked out once per pass.
-fn part_solves(problem: &Parametric) -> Vec<Vec<DMatrix<f64>>> {
+pub(super) fn part_solves(problem: &Parametric) -> Vec<Vec<DMatrix<f64>>> {
     let d = problem.x0.len();
     (0..problem.faces.len())
         .map(|p| {
@@ -284,27 +304,9 @@ fn sweep_faces(
     ok: &dyn Fn(&[f64]) -> bool,
 ) -> bool {
     let mut improved = false;
-    for (p, (faces, solves)) in problem.faces.iter().zip(solves).enumerate() {
-        for (j, &(axis, high, ref form)) in faces.iter().enumerate() {
-            let extent = extent_along(problem, p, axis, x);
-            if extent.is_nan() || extent <= 0.0 || form.is_constant() {
-                continue;
-            }
-            // Outwards is up for a high face, down for a low one.
-            let out = if high { 1.0 } else { -1.0 };
-            let moves: Vec<Vec<f64>> = shifts(extent, out)
-                .into_iter()
-                .flat_map(|shift| solves.iter().map(move |solve| (shift, solve)))
-                .filter_map(|(shift, solve)| {
-                    let mut b = DVector::zeros(faces.len());
-                    b[j] = shift;
-                    let (_, cand) = step(x, solve, &b, shift);
-                    // The move must actually move that face.
-                    let moved = (form.eval(&cand) - form.eval(x) - shift).abs()
-                        <= RELATIVE_EPSILON * extent;
-                    moved.then_some(cand)
-                })
-                .collect();
+    for (p, solves) in solves.iter().enumerate() {
+        for j in 0..problem.faces[p].len() {
+            let moves = face_moves(problem, p, j, solves, x, shifts);
             if let Some((l, cand)) = super::best_improvement(moves, *best, loss, ok) {
                 *best = l;
                 *x = cand;
@@ -315,111 +317,39 @@ fn sweep_faces(
     improved
 }
 
-/// Moves of a whole part tried by [`sweep_parts`], as multiples of its extent along the axis
-/// it is moved along, each both ways.
-const PART_MOVES: [f64; 8] = [0.5, 1.0, 1.5, 2.0, 3.0, 4.0, 6.0, 8.0];
-
-/// One pass over the parts: each is moved whole along its thinnest axis (every face of it
-/// along that axis by the same shift, through each of its changes of slots
-/// ([`keeping_others`]) that keeps its other faces) by [`PART_MOVES`] of its extent there
-/// and onto each of its siblings ([`sibling_shifts`]), and the best move is kept when the
-/// loss drops below `best`. A part misplaced by more than its own thickness covers none
-/// of the picture's pixels of it, so no gradient and no face move (at most one extent
-/// outwards, which opens the part's far side) reaches them: a shelf two or three of its
-/// thicknesses above the picture's shelf, or stacked onto another shelf where the picture
-/// has one shelf fewer. Whether any move was kept.
-fn sweep_parts(
+/// The points `x` with face `j` of part `p` alone moved by `shifts(extent, outwards)`
+/// (through each of the part's changes of slots `solves`, [`part_solves`]), keeping those
+/// that move that face as asked; none for a face no slot moves or a part of no extent
+/// along its axis.
+pub(super) fn face_moves(
     problem: &Parametric,
-    solves: &[Vec<DMatrix<f64>>],
-    x: &mut Vec<f64>,
-    best: &mut f64,
-    loss: &mut dyn FnMut(&[f64]) -> f64,
-    ok: &dyn Fn(&[f64]) -> bool,
-) -> bool {
-    let mut improved = false;
-    for (p, (faces, solves)) in problem.faces.iter().zip(solves).enumerate() {
-        if solves.is_empty() {
-            continue;
-        }
-        let Some((axis, extent)) = thinnest_axis(problem, p, x) else {
-            continue;
-        };
-        let along: Vec<f64> = faces
-            .iter()
-            .map(|f| f64::from(u8::from(f.0 == axis)))
-            .collect();
-        let siblings = sibling_shifts(problem, p, axis, x);
-        let moves: Vec<Vec<f64>> = PART_MOVES
-            .iter()
-            .flat_map(|f| [f * extent, -f * extent])
-            .chain(siblings)
-            .flat_map(|shift| solves.iter().map(move |solve| (shift, solve)))
-            .filter_map(|(shift, solve)| {
-                let b = DVector::from_iterator(faces.len(), along.iter().map(|a| a * shift));
-                let (_, cand) = step(x, solve, &b, shift);
-                // Every face of the part must move as asked.
-                let moved = faces.iter().zip(b.iter()).all(|(f, want)| {
-                    (f.2.eval(&cand) - f.2.eval(x) - want).abs() <= RELATIVE_EPSILON * extent
-                });
-                moved.then_some(cand)
-            })
-            .collect();
-        if let Some((l, cand)) = super::best_improvement(moves, *best, loss, ok) {
-            *best = l;
-            *x = cand;
-            improved = true;
-        }
+    p: usize,
+    j: usize,
+    solves: &[DMatrix<f64>],
+    x: &[f64],
+    shifts: &dyn Fn(f64, f64) -> Vec<f64>,
+) -> Vec<Vec<f64>> {
+    let faces = &problem.faces[p];
+    let (axis, high, ref form) = faces[j];
+    let extent = extent_along(problem, p, axis, x);
+    if extent.is_nan() || extent <= 0.0 || form.is_constant() {
+        return Vec::new();
     }
-    improved
-}
-
-/// Shifts along `axis` that put part `p` where a sibling of it is: another part about as
-/// thick along `axis` (within a factor of two) whose span overlaps `p`'s across the other
-/// two axes (one shelf above another), its low face onto the sibling's. A part the picture
-/// lacks (one shelf fewer) then hides inside a sibling, which the gradient cannot do: on
-/// the way every position costs more than where the part stands.
-fn sibling_shifts(problem: &Parametric, p: usize, axis: u8, x: &[f64]) -> Vec<f64> {
-    let own = spans(problem, p, x);
-    let thick = own[usize::from(axis)].1 - own[usize::from(axis)].0;
-    (0..problem.faces.len())
-        .filter(|&q| q != p)
-        .filter_map(|q| {
-            let other = spans(problem, q, x);
-            let t = other[usize::from(axis)].1 - other[usize::from(axis)].0;
-            let alike = t > 0.5 * thick && t < 2.0 * thick;
-            let across = (0..3)
-                .filter(|&a| a != usize::from(axis))
-                .all(|a| own[a].1.min(other[a].1) > own[a].0.max(other[a].0));
-            (alike && across).then(|| other[usize::from(axis)].0 - own[usize::from(axis)].0)
+    // Outwards is up for a high face, down for a low one.
+    let out = if high { 1.0 } else { -1.0 };
+    shifts(extent, out)
+        .into_iter()
+        .flat_map(|shift| solves.iter().map(move |solve| (shift, solve)))
+        .filter_map(|(shift, solve)| {
+            let mut b = DVector::zeros(faces.len());
+            b[j] = shift;
+            let (_, cand) = step(x, solve, &b, shift);
+            // The move must actually move that face.
+            let moved =
+                (form.eval(&cand) - form.eval(x) - shift).abs() <= RELATIVE_EPSILON * extent;
+            moved.then_some(cand)
         })
-        .filter(|shift| shift.abs() > 0.0)
         .collect()
-}
-
-/// Part `p`'s span `(low, high)` along each axis at `x` (`(∞, −∞)` along an axis it has no
-/// face on).
-fn spans(problem: &Parametric, p: usize, x: &[f64]) -> [(f64, f64); 3] {
-    let mut out = [(f64::INFINITY, f64::NEG_INFINITY); 3];
-    for f in &problem.faces[p] {
-        let v = f.2.eval(x);
-        let s = &mut out[usize::from(f.0)];
-        *s = (s.0.min(v), s.1.max(v));
-    }
-    out
-}
-
-/// Part `p`'s thinnest axis at `x` among those a slot moves a face of, with its extent
-/// there (`None` when no such axis has a positive extent).
-fn thinnest_axis(problem: &Parametric, p: usize, x: &[f64]) -> Option<(u8, f64)> {
-    (0..3u8)
-        .filter(|&a| {
-            problem.faces[p]
-                .iter()
-                .any(|f| f.0 == a && !f.2.is_constant())
-        })
-        .map(|a| (a, extent_along(problem, p, a, x)))
-        .filter(|(_, e)| e.is_finite() && *e > 0.0)
-        .min_by(|a, b| a.1.total_cmp(&b.1))
 }
 
 /// Moves tried by [`refine`], in units of its `step` (about a pixel), each both ways.
@@ -593,7 +523,7 @@ mod tests {
             &p,
             p.x0.clone(),
             1,
-            &mut |x| volume(x) + 1e6 * others(x),
+            &mut |x: &[f64]| volume(x) + 1e6 * others(x),
             &|x| extents(x).iter().all(|&e| e > 0.0),
         );
         let v = volume(&x);
@@ -604,40 +534,6 @@ mod tests {
             .map(|i| m.slots[i].name.as_str())
             .collect();
         assert!(moved.iter().all(|n| n.contains("arm")), "moved {moved:?}");
-    }
-
-    /// How far the faces of `parts` across z moved from the model's numbers (squared), the
-    /// shelf tests' stand-in for every other edge a picture shows.
-    fn moved_across_z(p: &Parametric, parts: &[usize], x: &[f64]) -> f64 {
-        parts
-            .iter()
-            .flat_map(|&q| p.faces[q].iter().filter(|f| f.0 != 2))
-            .map(|f| (f.2.eval(x) - f.2.eval(&p.x0)).powi(2))
-            .sum()
-    }
-
-    #[test]
-    fn a_shelf_three_thicknesses_off_is_moved_onto_the_pictures() {
-        // A 3-thick shelf at z 30; the "picture" has it at z 40 and sees, along z, the
-        // length of what the two cover apart (no overlap: no gradient), and every other
-        // face's move.
-        let m = crate::front::test_model("translate([0, 0, 30]) cube([80, 50, 3]);\n");
-        let p = Parametric::new(&m);
-        let along_z = |x: &[f64]| spans(&p, 0, x)[2];
-        let mut loss = |x: &[f64]| -> f64 {
-            let (lo, hi) = along_z(x);
-            let overlap = (hi.min(43.0) - lo.max(40.0)).max(0.0);
-            (hi - lo) + 3.0 - 2.0 * overlap + 1e3 * moved_across_z(&p, &[0], x)
-        };
-        let x = polish(&p, p.x0.clone(), 3, &mut loss, &|x| {
-            let (lo, hi) = along_z(x);
-            hi > lo
-        });
-        let (lo, hi) = along_z(&x);
-        assert!(
-            (lo - 40.0).abs() < 0.3 && (hi - 43.0).abs() < 0.3,
-            "shelf at {lo}..{hi}"
-        );
     }
 
     #[test]
@@ -668,30 +564,5 @@ mod tests {
                 "the block moved"
             );
         }
-    }
-
-    #[test]
-    fn a_shelf_the_picture_lacks_hides_in_its_sibling() {
-        // Two shelves; the "picture" has only the upper one and sees, along z, what the
-        // shelves cover apart from it. Squashing the lower one leaves a sliver; moving it
-        // any few thicknesses costs as much as where it stands.
-        let m = crate::front::test_model(
-            "translate([0, 0, 30]) cube([80, 50, 3]);\ntranslate([0, 0, 90]) cube([80, 50, 3]);\n",
-        );
-        let p = Parametric::new(&m);
-        let span = |x: &[f64], q: usize| spans(&p, q, x)[2];
-        let mut loss = |x: &[f64]| -> f64 {
-            let (a, b) = (span(x, 0), span(x, 1));
-            // Covered length of the union, less twice its overlap with [90, 93], plus 3.
-            let union = (a.1 - a.0) + (b.1 - b.0) - (a.1.min(b.1) - a.0.max(b.0)).max(0.0);
-            let hit = |s: (f64, f64)| (s.1.min(93.0) - s.0.max(90.0)).max(0.0);
-            let both = (a.1.min(b.1).min(93.0) - a.0.max(b.0).max(90.0)).max(0.0);
-            let seen = hit(a) + hit(b) - both;
-            union + 3.0 - 2.0 * seen + 1e3 * moved_across_z(&p, &[0, 1], x)
-        };
-        let x = polish(&p, p.x0.clone(), 2, &mut loss, &|x| {
-            (0..2).all(|q| span(x, q).1 > span(x, q).0)
-        });
-        assert!(loss(&x) < 1e-9, "lower shelf at {:?}", span(&x, 0));
     }
 }
