@@ -1,14 +1,15 @@
 //! Moves after the gradient rounds, kept when the loss drops: single faces of single parts
 //! and the faces of several parts that share a plane in the model as written (a contact, a
-//! flush), moved by fractions of the parts' extent, after the moves of whole parts
-//! ([`super::part_moves`]) ([`polish`]); and single slots and faces moved by a pixel or less
+//! flush), moved by fractions of the parts' extent, each pass after the whole-part moves of
+//! [`super::part_moves`] ([`polish`]); and single slots and faces moved by a pixel or less
 //! on hard edges ([`refine`]).
 //!
 //! Invariants: a face move changes only the chosen face among its part's faces, and a plane
 //! move only the plane's faces among its parts' faces; of the changes of slots that do so,
 //! the one that moves the other parts' faces least and the smallest are offered
-//! ([`keeping_others`]), round-off removed. The result is never worse than the start under
-//! the fine edges ([`Edges::Fine`]).
+//! ([`keeping_others`]), round-off removed. Every move kept lowers the fine loss
+//! ([`Edges::Fine`]) in the lighting the judge then stands in (a jump's own lighting,
+//! [`super::part_moves`]; with a plain loss, the result is never worse than the start).
 
 use super::Parametric;
 use super::part_moves::{Edges, Judge, sweep_parts};
