@@ -102,13 +102,11 @@ pub(super) fn sweep_parts(
 /// Of the moves `judged` (each with its loss), the first with the lowest loss, when that is
 /// below `best`.
 fn lowest_below(judged: &[(f64, Vec<f64>, bool)], best: f64) -> Option<(f64, Vec<f64>)> {
-    let mut chosen: Option<&(f64, Vec<f64>, bool)> = None;
-    for j in judged {
-        if j.0 < best && chosen.is_none_or(|c| j.0 < c.0) {
-            chosen = Some(j);
-        }
-    }
-    chosen.map(|c| (c.0, c.1.clone()))
+    judged
+        .iter()
+        .filter(|j| j.0 < best)
+        .min_by(|a, b| a.0.total_cmp(&b.0))
+        .map(|c| (c.0, c.1.clone()))
 }
 
 /// Of a part's moves that no fine loss kept (each with its loss in the lighting the judge
@@ -179,13 +177,12 @@ fn jump(
     judge: &mut dyn Judge,
     ok: &dyn Fn(&[f64]) -> bool,
 ) -> Option<(f64, Vec<f64>)> {
-    let far: Vec<Vec<f64>> = moves.into_iter().filter(|c| ok(c)).collect();
-    if far.is_empty() {
+    if moves.is_empty() {
         return None;
     }
     let here = lit(judge, x, Edges::Coarse);
     let mut coarse = |c: &[f64]| lit(judge, c, Edges::Coarse);
-    let landed = super::best_improvement(far, here, &mut coarse, ok);
+    let landed = super::best_improvement(moves, here, &mut coarse, ok);
     let kept = landed.and_then(|(_, landed)| {
         let base = lit(judge, x, Edges::Fine);
         judge.light_at(Some(&landed));
@@ -239,10 +236,8 @@ fn settle(
     ok: &dyn Fn(&[f64]) -> bool,
 ) -> (f64, Vec<f64>) {
     let mut best = loss(&x);
-    let faces = |out: f64| {
-        move |extent: f64, _: f64| -> Vec<f64> {
-            SETTLE_FACE_MOVES.iter().map(|f| out * f * extent).collect()
-        }
+    let faces = |extent: f64, out: f64| -> Vec<f64> {
+        SETTLE_FACE_MOVES.iter().map(|f| out * f * extent).collect()
     };
     for _ in 0..SETTLE_ROUNDS {
         let extent = extent_along(problem, p, axis, &x);
@@ -256,8 +251,7 @@ fn settle(
         let mut moves = shifted(problem, p, axis, solves, &x, &shifts);
         for (j, face) in problem.faces[p].iter().enumerate() {
             if face.0 == axis {
-                let out = if face.1 { 1.0 } else { -1.0 };
-                moves.extend(face_moves(problem, p, j, solves, &x, &faces(out)));
+                moves.extend(face_moves(problem, p, j, solves, &x, &faces));
             }
         }
         match super::best_improvement(moves, best, loss, ok) {
